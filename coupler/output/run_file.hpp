@@ -1,0 +1,58 @@
+// run.h5 and run.xdmf: the scene, versions, a time series and per-particle frames of one run.
+// Written by the coupler only. The file is flushed after every frame and the XDMF rewritten, so a
+// run that stops early (crash, signal) leaves both readable up to the last frame.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rockcut::coupler {
+
+/// One per-particle field of a frame: `components` values per particle, interleaved.
+struct FrameField {
+  std::string name;  ///< "position", "velocity", "radius", "force", "pressure", ...
+  int components = 1;
+  std::span<const double> values;  ///< particle_count * components values
+};
+
+class RunFile {
+ public:
+  /// Creates OUT/run.h5 (truncating) and OUT/run.xdmf. `scene_text` and `attributes` (versions,
+  /// transport, ...) are stored as string attributes on the root group.
+  RunFile(const std::filesystem::path& out_dir, const std::string& scene_text,
+          const std::map<std::string, std::string>& attributes);
+  ~RunFile();
+  RunFile(const RunFile&) = delete;
+  RunFile& operator=(const RunFile&) = delete;
+
+  /// Appends one row to /timeseries: dataset /timeseries/time_s and one 1-D dataset per name
+  /// (chunked, extendible). Names may appear late (earlier rows are NaN) and may be missing in a row
+  /// (NaN).
+  void append_timeseries(double time_s, std::uint64_t step,
+                         const std::vector<std::pair<std::string, double>>& scalars);
+
+  /// Writes frame k as /frames/<k:06d>/<field> (chunked, deflate-compressed) with attributes time_s
+  /// and step, flushes, and rewrites run.xdmf. Vector fields must have 2 components; "position" is
+  /// required and becomes the XDMF geometry (XY).
+  void write_frame(double time_s, std::uint64_t step, std::size_t particle_count,
+                   const std::vector<FrameField>& fields);
+
+  /// Stores a string attribute on the root group (e.g. "status" = "failed: ...").
+  void set_attribute(const std::string& name, const std::string& value);
+
+  std::size_t frame_count() const;
+
+  /// Flushes and closes; idempotent. Called by the destructor.
+  void close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rockcut::coupler

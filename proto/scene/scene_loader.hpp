@@ -51,4 +51,9 @@ LoadedScene load_scene(const std::filesystem::path& path,
 LoadedScene parse_scene(const std::string& text, const std::string& name,
                         const std::vector<std::string>& overrides = {});
 
+/// What parse_scene does, for any message type: parse `text` into `message`, apply `overrides`,
+/// validate against the field options. Lets tests exercise schema features Scene does not use yet.
+void parse_message(const std::string& text, const std::string& name,
+                   const std::vector<std::string>& overrides, google::protobuf::Message& message);
+
 }  // namespace rockcut::scene

@@ -1,0 +1,118 @@
+#include "output/summary_json.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "output/atomic_write.hpp"
+#include "output/summary_parser.hpp"
+
+namespace rockcut::coupler {
+
+namespace {
+
+void append_escaped(std::string& out, const std::string& text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  out += '"';
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (u < 0x20 || u == 0x7f) {
+          out += "\\u00";
+          out += kHex[u >> 4];
+          out += kHex[u & 0xf];
+        } else {
+          out += c;  // UTF-8 passes through unchanged
+        }
+    }
+  }
+  out += '"';
+}
+
+void append_double(std::string& out, double value) {
+  if (!std::isfinite(value)) {
+    out += "null";  // JSON has no NaN/Infinity
+    return;
+  }
+  // "%.17g" round-trips every double; to_chars is the locale-independent equivalent.
+  char buf[32];
+  const auto result = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 17);
+  const std::string_view text(buf, static_cast<std::size_t>(result.ptr - buf));
+  out += text;
+  // Keep it recognisably a double: read() maps numbers without '.' or 'e' to int64.
+  if (text.find_first_of(".e") == std::string_view::npos) out += ".0";
+}
+
+void append_value(std::string& out, const SummaryValue& value) {
+  if (const auto* d = std::get_if<double>(&value)) {
+    append_double(out, *d);
+  } else if (const auto* i = std::get_if<std::int64_t>(&value)) {
+    out += std::to_string(*i);
+  } else if (const auto* b = std::get_if<bool>(&value)) {
+    out += *b ? "true" : "false";
+  } else {
+    append_escaped(out, std::get<std::string>(value));
+  }
+}
+
+}  // namespace
+
+void Summary::set(const std::string& key, SummaryValue value) {
+  for (auto& entry : entries_) {
+    if (entry.first == key) {
+      entry.second = std::move(value);
+      return;
+    }
+  }
+  entries_.emplace_back(key, std::move(value));
+}
+
+std::optional<SummaryValue> Summary::get(const std::string& key) const {
+  for (const auto& entry : entries_) {
+    if (entry.first == key) return entry.second;
+  }
+  return std::nullopt;
+}
+
+std::string Summary::to_json() const {
+  std::string out = "{\n";
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    out += "  ";
+    append_escaped(out, entries_[i].first);
+    out += ": ";
+    append_value(out, entries_[i].second);
+    if (i + 1 < entries_.size()) out += ',';
+    out += '\n';
+  }
+  out += "}\n";
+  return out;
+}
+
+void Summary::write(const std::filesystem::path& file) const {
+  write_file_atomically(file, to_json());
+}
+
+Summary Summary::read(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error(file.string() + ": cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(file.string() + ": read error");
+  Summary summary;
+  for (auto& [key, value] : parse_flat_json_object(buffer.str(), file.string())) {
+    summary.set(key, std::move(value));
+  }
+  return summary;
+}
+
+}  // namespace rockcut::coupler

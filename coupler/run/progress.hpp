@@ -1,0 +1,31 @@
+// The progress line: simulated time, steps, wall time and ETA. On a terminal one line is redrawn in
+// place a few times a second; otherwise (logs, CI) a plain line is printed every few seconds.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+
+namespace rockcut::coupler {
+
+class Progress {
+ public:
+  Progress(double end_time_s, std::uint64_t total_steps, std::FILE* stream);
+  /// Cheap when nothing is due: compares the clock only.
+  void update(double time_s, std::uint64_t step);
+  /// Prints the final line (and a newline on a terminal).
+  void finish(double time_s, std::uint64_t step);
+  double elapsed_s() const;
+
+ private:
+  void print(double time_s, std::uint64_t step, bool final);
+
+  double end_time_s_;
+  std::uint64_t total_steps_;
+  std::FILE* stream_;
+  bool tty_;
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point next_print_;
+};
+
+}  // namespace rockcut::coupler

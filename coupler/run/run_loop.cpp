@@ -1,0 +1,155 @@
+// The clock of a run: the half-step synchronised exchange of DESIGN section 3 for coupled scenes,
+// plain multi-step advances for dry ones, and the recording of time series and frames.
+#include <algorithm>
+#include <cmath>
+
+#include "run/run_session.hpp"
+#include "wire/protocol.hpp"
+
+namespace rockcut::coupler {
+
+void RunSession::loop() {
+  next_series_step_ = 0;
+  next_frame_index_ = 0;
+
+  if (coupled_) {
+    exchange(0, true);  // t = 0: a^0 includes the fluid force
+  } else {
+    advance_dry(0);
+  }
+  maybe_record(true);
+
+  const double frame_interval = scene_.output().frame_interval_s();
+  while (step_ < plan_.total_steps) {
+    const std::uint64_t remaining = plan_.total_steps - step_;
+    if (coupled_) {
+      exchange(static_cast<unsigned>(std::min<std::uint64_t>(plan_.coupling_interval, remaining)),
+               false);
+    } else {
+      // Dry: run straight to the next output event; no message per step.
+      std::uint64_t chunk = std::min(remaining, next_series_step_ - step_);
+      if (frame_interval > 0) {
+        const double next_frame_time = next_frame_index_ * frame_interval;
+        const double steps_to_frame = std::ceil((next_frame_time - time_s_) / plan_.dt_s - 1e-9);
+        chunk = std::min<std::uint64_t>(chunk, std::max(1.0, steps_to_frame));
+      }
+      chunk = std::clamp<std::uint64_t>(chunk, 1, 1u << 30);
+      advance_dry(static_cast<unsigned>(chunk));
+    }
+    maybe_record(step_ >= plan_.total_steps);
+    progress_->update(time_s_, step_);
+  }
+}
+
+void RunSession::exchange(unsigned steps, bool initial) {
+  // 1. DEM: N-1 full steps, then half kick and drift; answers x^{n+N}, v^{n+N-1/2}.
+  request_.clear();
+  wire::Advance* advance = request_.envelope.mutable_advance();
+  advance->set_steps(steps);
+  advance->set_dt_s(plan_.dt_s);
+  advance->set_split_last(true);
+  dem_.link->request(request_, reply_);
+  if (!reply_.envelope.has_kinematics()) {
+    throw wire::ModuleFailure(dem_.link->label(), "answered Advance without Kinematics");
+  }
+  const double t = reply_.envelope.kinematics().time_s();
+
+  // 2. Fluid: advance the pressure by N dt (nothing at t = 0) and return the forces. The DEM
+  //    computes its contact forces meanwhile. Arrays are forwarded, not copied.
+  fluid_request_.clear();
+  wire::FluidStep* fs = fluid_request_.envelope.mutable_fluid_step();
+  fs->set_dt_s(initial ? 0.0 : steps * plan_.dt_s);
+  fs->set_time_s(t);
+  bytes_exchanged_ += reply_.payload_bytes();
+  fluid_request_.take_arrays(reply_);
+  fluid_->link->request(fluid_request_, fluid_reply_);
+  bytes_exchanged_ += fluid_reply_.payload_bytes();
+
+  // 3. DEM: total force at x^{n+N}, second half kick.
+  request_.clear();
+  request_.envelope.mutable_apply_forces();
+  request_.take_arrays(fluid_reply_);
+  dem_.link->request(request_, reply_);
+  if (!reply_.envelope.has_step_report()) {
+    throw wire::ModuleFailure(dem_.link->label(), "answered ApplyForces without StepReport");
+  }
+  ++exchanges_;
+  scalars_.clear();
+  for (const auto& [name, value] : fluid_reply_.envelope.fluid_result().scalars()) {
+    scalars_.emplace_back("fluid_" + name, value);
+  }
+  record_step_report(reply_.envelope.step_report());
+}
+
+void RunSession::advance_dry(unsigned steps) {
+  request_.clear();
+  wire::Advance* advance = request_.envelope.mutable_advance();
+  advance->set_steps(steps);
+  advance->set_dt_s(plan_.dt_s);
+  advance->set_split_last(false);
+  dem_.link->request(request_, reply_);
+  if (!reply_.envelope.has_step_report()) {
+    throw wire::ModuleFailure(dem_.link->label(), "answered Advance without StepReport");
+  }
+  ++exchanges_;
+  scalars_.clear();
+  record_step_report(reply_.envelope.step_report());
+}
+
+void RunSession::record_step_report(const wire::StepReport& report) {
+  time_s_ = report.time_s();
+  step_ = report.step();
+  // protobuf maps have no stable order: sort so every run writes the same columns.
+  for (const auto& [name, value] : report.scalars()) scalars_.emplace_back(name, value);
+  std::sort(scalars_.begin(), scalars_.end());
+}
+
+void RunSession::maybe_record(bool last) {
+  if (step_ >= next_series_step_ || last) {
+    run_file_->append_timeseries(time_s_, step_, scalars_);
+    const std::uint64_t every = scene_.output().timeseries_every_steps();
+    next_series_step_ = (step_ / every + 1) * every;
+  }
+  const double interval = scene_.output().frame_interval_s();
+  bool frame_due = last || next_frame_index_ == 0;
+  if (interval > 0 && time_s_ >= next_frame_index_ * interval - 0.5 * plan_.dt_s) frame_due = true;
+  if (frame_due) {
+    write_frame();
+    if (interval > 0) {
+      next_frame_index_ = static_cast<std::uint64_t>(std::floor(time_s_ / interval + 0.5)) + 1;
+    } else {
+      next_frame_index_ = 1;
+    }
+  }
+}
+
+void RunSession::write_frame() {
+  request_.clear();
+  for (const std::string& f : dem_frame_fields_) {
+    request_.envelope.mutable_frame_request()->add_fields(f);
+  }
+  dem_.link->request(request_, reply_);
+  std::vector<FrameField> fields;
+  for (const std::string& f : dem_frame_fields_) {
+    const std::uint32_t components = reply_.envelope.arrays(static_cast<int>(fields.size())).components();
+    fields.push_back({f, static_cast<int>(components), reply_.array(f, components)});
+  }
+  if (fluid_ && !fluid_frame_fields_.empty()) {
+    fluid_request_.clear();
+    for (const std::string& f : fluid_frame_fields_) {
+      fluid_request_.envelope.mutable_frame_request()->add_fields(f);
+    }
+    fluid_->link->request(fluid_request_, fluid_reply_);
+    for (std::size_t k = 0; k < fluid_frame_fields_.size(); ++k) {
+      const std::string& f = fluid_frame_fields_[k];
+      const std::uint32_t components = fluid_reply_.envelope.arrays(static_cast<int>(k)).components();
+      fields.push_back({f, static_cast<int>(components), fluid_reply_.array(f, components)});
+    }
+  }
+  const auto position = reply_.array(wire::field::kPosition, 2);
+  if (initial_position_.empty()) initial_position_.assign(position.begin(), position.end());
+  last_position_.assign(position.begin(), position.end());
+  run_file_->write_frame(time_s_, step_, dem_.init.particle_count(), fields);
+}
+
+}  // namespace rockcut::coupler

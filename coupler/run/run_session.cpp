@@ -1,0 +1,328 @@
+#include "run/run_session.hpp"
+
+#include <stdlib.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "run/signals.hpp"
+#include "run/verification.hpp"
+#include "wire/protocol.hpp"
+
+namespace rockcut::coupler {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool contains(const google::protobuf::RepeatedPtrField<std::string>& list, const std::string& s) {
+  return std::find(list.begin(), list.end(), s) != list.end();
+}
+
+std::string join(const google::protobuf::RepeatedPtrField<std::string>& list) {
+  std::string out;
+  for (const auto& s : list) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+// The fields every frame carries when the scene names none.
+const std::vector<std::string> kDefaultFrameFields = {"position", "velocity", "radius"};
+
+}  // namespace
+
+int run_scene(const RunOptions& options) {
+  scene::LoadedScene loaded;
+  try {
+    loaded = scene::load_scene(options.scene_path, options.overrides);
+  } catch (const scene::SceneError& e) {
+    std::cerr << e.what() << (std::string(e.what()).ends_with('\n') ? "" : "\n");
+    return kExitBadInput;
+  }
+  install_stop_signal_handlers();
+  RunSession session(options, std::move(loaded));
+  return session.run();
+}
+
+RunSession::RunSession(const RunOptions& options, scene::LoadedScene scene)
+    : options_(options), loaded_(std::move(scene)), scene_(loaded_.scene) {
+  coupled_ = scene_.has_fluid();
+  if (options_.out_dir.empty()) options_.out_dir = fs::path("out") / loaded_.path.stem();
+}
+
+RunSession::~RunSession() {
+  // Modules first (they may need the context to say goodbye), then the context, which releases any
+  // inproc thread still blocked, then the links' threads are joined.
+  if (dem_.link) dem_.link->close();
+  if (fluid_ && fluid_->link) fluid_->link->close();
+  if (context_) context_->shutdown();
+  dem_.link.reset();
+  fluid_.reset();
+  if (!ipc_dir_.empty()) {
+    std::error_code ec;
+    fs::remove_all(ipc_dir_, ec);
+  }
+}
+
+fs::path RunSession::module_executable(const std::string& from_scene, const char* name) const {
+  if (from_scene.empty()) return options_.module_dir / name;
+  fs::path p(from_scene);
+  // A relative path in a scene is relative to the scene file, so cases can carry their modules.
+  if (p.is_relative()) p = loaded_.path.parent_path() / p;
+  return p;
+}
+
+void RunSession::start_modules() {
+  context_.emplace(1);
+  if (options_.transport == Transport::ipc) {
+    // A private directory (mkdtemp makes it 0700) keeps other users off the sockets.
+    std::string templ = (fs::temp_directory_path() / "rockcut-XXXXXX").string();
+    if (!mkdtemp(templ.data())) throw std::runtime_error("cannot create a private ipc directory");
+    ipc_dir_ = templ;
+  }
+  const auto timeout = std::chrono::milliseconds(
+      static_cast<long long>(scene_.coupling().timeout_s() * 1000.0));
+  auto spec_for = [&](wire::ModuleKind kind, const std::string& exe_from_scene, const char* exe,
+                      const std::string& tcp_endpoint) {
+    LinkSpec spec;
+    spec.kind = kind;
+    spec.transport = options_.transport;
+    spec.timeout = timeout;
+    const std::string short_name = kind == wire::MODULE_KIND_DEM ? "dem" : "fluid";
+    switch (options_.transport) {
+      case Transport::ipc:
+        spec.endpoint = "ipc://" + (ipc_dir_ / (short_name + ".sock")).string();
+        spec.executable = module_executable(exe_from_scene, exe);
+        break;
+      case Transport::inproc: spec.endpoint = "inproc://" + short_name; break;
+      case Transport::tcp: spec.endpoint = tcp_endpoint; break;
+    }
+    return spec;
+  };
+  dem_.link = std::make_unique<ModuleLink>(
+      *context_, spec_for(wire::MODULE_KIND_DEM, scene_.dem().executable(), "dem_module",
+                          options_.dem_endpoint));
+  if (coupled_) {
+    fluid_.emplace();
+    fluid_->link = std::make_unique<ModuleLink>(
+        *context_, spec_for(wire::MODULE_KIND_FLUID, scene_.fluid().executable(), "fluid_module",
+                            options_.fluid_endpoint));
+  }
+  dem_.hello = dem_.link->handshake();
+  if (fluid_) {
+    fluid_->hello = fluid_->link->handshake();
+    if (!contains(fluid_->hello.models(), scene_.fluid().model())) {
+      throw wire::ModuleFailure(
+          fluid_->link->label(),
+          "the scene asks for fluid.model \"" + scene_.fluid().model() + "\", but " +
+              fluid_->hello.module_name() + " " + fluid_->hello.module_version() + " offers: " +
+              join(fluid_->hello.models()));
+    }
+  }
+}
+
+void RunSession::init_modules() {
+  request_.clear();
+  *request_.envelope.mutable_init()->mutable_scene() = scene_;
+  dem_.link->request(request_, reply_);
+  dem_.init = reply_.envelope.init_reply();
+  if (!fluid_) return;
+
+  // The fluid gets the static particle data (radius, initial position) once.
+  request_.clear();
+  request_.envelope.mutable_frame_request()->add_fields(std::string(wire::field::kRadius));
+  request_.envelope.mutable_frame_request()->add_fields(std::string(wire::field::kPosition));
+  dem_.link->request(request_, reply_);
+  fluid_request_.clear();
+  *fluid_request_.envelope.mutable_init()->mutable_scene() = scene_;
+  fluid_request_.take_arrays(reply_);
+  fluid_->link->request(fluid_request_, fluid_reply_);
+  fluid_->init = fluid_reply_.envelope.init_reply();
+
+  // Subscribe the DEM to exactly the kinematics the fluid model needs: nothing else is sent.
+  request_.clear();
+  wire::Subscribe* sub = request_.envelope.mutable_subscribe();
+  for (const std::string& f : fluid_->init.needs()) {
+    if (!contains(dem_.init.provides(), f)) {
+      throw wire::ModuleFailure(fluid_->link->label(),
+                                "fluid model " + fluid_->init.model() + " needs \"" + f + "\", which " +
+                                    dem_.hello.module_name() + " does not provide (it provides " +
+                                    join(dem_.init.provides()) + ")");
+    }
+    sub->add_fields(f);
+  }
+  for (const std::string& f : dem_.init.needs()) {
+    if (!contains(fluid_->init.provides(), f)) {
+      throw wire::ModuleFailure(dem_.link->label(), "needs \"" + f + "\", which fluid model " +
+                                                        fluid_->init.model() +
+                                                        " does not provide");
+    }
+  }
+  dem_.link->request(request_, reply_);
+}
+
+void RunSession::check_frame_fields() {
+  std::vector<std::string> wanted(scene_.output().frame_fields().begin(),
+                                  scene_.output().frame_fields().end());
+  if (wanted.empty()) wanted = kDefaultFrameFields;
+  if (std::find(wanted.begin(), wanted.end(), "position") == wanted.end()) {
+    wanted.insert(wanted.begin(), "position");  // the XDMF geometry
+  }
+  for (const std::string& f : wanted) {
+    if (contains(dem_.init.provides(), f)) {
+      dem_frame_fields_.push_back(f);
+    } else if (fluid_ && contains(fluid_->init.provides(), f)) {
+      fluid_frame_fields_.push_back(f);
+    } else {
+      throw PlanError("output.frame_fields: \"" + f + "\" is provided by no module of this scene (" +
+                      dem_.hello.module_name() + ": " + join(dem_.init.provides()) +
+                      (fluid_ ? "; " + fluid_->init.model() + ": " + join(fluid_->init.provides())
+                              : std::string("; no fluid")) +
+                      ")");
+    }
+  }
+}
+
+void RunSession::open_output() {
+  fs::create_directories(options_.out_dir);
+  std::map<std::string, std::string> attributes = {
+      {"rockcut_version", ROCKCUT_VERSION},
+      {"protocol_version", std::to_string(wire::kProtocolVersion)},
+      {"scene_path", loaded_.path.string()},
+      {"transport", transport_name(options_.transport)},
+      {"dem_module", dem_.hello.module_name() + " " + dem_.hello.module_version()},
+      {"status", "running"}};
+  if (fluid_) {
+    attributes["fluid_module"] = fluid_->hello.module_name() + " " + fluid_->hello.module_version();
+    attributes["fluid_model"] = fluid_->init.model();
+  }
+  run_file_ = std::make_unique<RunFile>(options_.out_dir, loaded_.effective_text(), attributes);
+  summary_.set("scene", loaded_.path.string());
+  summary_.set("title", scene_.title());
+  summary_.set("transport", std::string(transport_name(options_.transport)));
+  summary_.set("particles", static_cast<std::int64_t>(dem_.init.particle_count()));
+  summary_.set("dt_s", plan_.dt_s);
+  summary_.set("coupling_interval", static_cast<std::int64_t>(plan_.coupling_interval));
+  summary_.set("fluid_model", fluid_ ? fluid_->init.model() : std::string("none"));
+}
+
+void RunSession::print_startup() const {
+  std::fprintf(stderr, "scene      %s%s\n", loaded_.path.c_str(),
+               scene_.title().empty() ? "" : (" (" + scene_.title() + ")").c_str());
+  std::fprintf(stderr, "transport  %s\n", transport_name(options_.transport));
+  std::fprintf(stderr, "dem        %s %s, %llu particles\n", dem_.link->label().c_str(),
+               dem_.hello.module_version().c_str(),
+               static_cast<unsigned long long>(dem_.init.particle_count()));
+  if (fluid_) {
+    std::fprintf(stderr, "fluid      %s %s, model %s, needs [%s]\n", fluid_->link->label().c_str(),
+                 fluid_->hello.module_version().c_str(), fluid_->init.model().c_str(),
+                 join(fluid_->init.needs()).c_str());
+  } else {
+    std::fprintf(stderr, "fluid      none (dry scene: no fluid process)\n");
+  }
+  for (const std::string& line : plan_.report) std::fprintf(stderr, "%s\n", line.c_str());
+  std::fprintf(stderr, "output     %s\n", options_.out_dir.c_str());
+}
+
+int RunSession::run() {
+  try {
+    start_modules();
+    init_modules();
+    check_frame_fields();
+    std::vector<Limit> dem_limits, fluid_limits;
+    for (const auto& l : dem_.init.limits()) {
+      dem_limits.push_back({dem_.hello.module_name(), l.name(), l.dt_max_s(), l.detail()});
+    }
+    if (fluid_) {
+      for (const auto& l : fluid_->init.limits()) {
+        fluid_limits.push_back({fluid_->hello.module_name(), l.name(), l.dt_max_s(), l.detail()});
+      }
+    }
+    plan_ = plan_time(scene_, dem_limits, fluid_limits, coupled_);
+  } catch (const PlanError& e) {
+    std::cerr << loaded_.path.string() << ": refused: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const wire::ModuleFailure& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitModuleFailed;
+  } catch (const wire::Interrupted&) {
+    std::cerr << "interrupted during start-up\n";
+    return 128 + stop_signal();
+  } catch (const std::runtime_error& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitModuleFailed;
+  }
+
+  print_startup();
+  try {
+    open_output();
+  } catch (const std::exception& e) {
+    std::cerr << "error: cannot write output in " << options_.out_dir << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  progress_ = std::make_unique<Progress>(scene_.time().end_time_s(), plan_.total_steps, stderr);
+  try {
+    loop();
+  } catch (const wire::ModuleFailure& e) {
+    std::fprintf(stderr, "\nerror: %s at t = %.6g s (step %llu); run stopped, output so far in %s\n",
+                 e.what(), time_s_, static_cast<unsigned long long>(step_),
+                 options_.out_dir.c_str());
+    return finish(kExitModuleFailed, "failed", e.what());
+  } catch (const wire::Interrupted&) {
+    const int sig = stop_signal();
+    std::fprintf(stderr, "\nstopped by signal %d at t = %.6g s (step %llu); output so far in %s\n",
+                 sig, time_s_, static_cast<unsigned long long>(step_), options_.out_dir.c_str());
+    return finish(128 + sig, "interrupted", "signal " + std::to_string(sig));
+  }
+  progress_->finish(time_s_, step_);
+
+  int code = kExitOk;
+  if (scene_.has_verification()) {
+    const VerificationResult v = verify(scene_, initial_position_, last_position_, time_s_);
+    summary_.set("verification", v.analytical);
+    summary_.set("error_max_rel", v.error_max_rel);
+    summary_.set("error_l2_rel", v.error_l2_rel);
+    summary_.set("error_tolerance_rel", v.tolerance_rel);
+    summary_.set("verification_passed", v.passed);
+    std::printf("verification %s: error_max_rel %.3e, error_l2_rel %.3e (tolerance %.1e): %s\n",
+                v.analytical.c_str(), v.error_max_rel, v.error_l2_rel, v.tolerance_rel,
+                v.passed ? "passed" : "FAILED");
+    if (!v.passed) code = kExitVerificationFailed;
+  }
+  return finish(code, "completed", "");
+}
+
+int RunSession::finish(int code, const std::string& status, const std::string& reason) {
+  const double wall = progress_ ? progress_->elapsed_s() : 0.0;
+  summary_.set("status", status);
+  if (!reason.empty()) summary_.set("error", reason);
+  summary_.set("time_s", time_s_);
+  summary_.set("steps", static_cast<std::int64_t>(step_));
+  summary_.set("exchanges", static_cast<std::int64_t>(exchanges_));
+  summary_.set("bytes_exchanged", static_cast<std::int64_t>(bytes_exchanged_));
+  summary_.set("wall_time_s", wall);
+  summary_.set("particle_steps_per_s",
+               wall > 0 ? static_cast<double>(dem_.init.particle_count()) * step_ / wall : 0.0);
+  try {
+    if (run_file_) {
+      run_file_->set_attribute("status", reason.empty() ? status : status + ": " + reason);
+      run_file_->set_attribute("wall_time_s", std::to_string(wall));
+      run_file_->close();
+    }
+    summary_.write(options_.out_dir / "summary.json");
+  } catch (const std::exception& e) {
+    std::cerr << "error: closing the output in " << options_.out_dir << ": " << e.what() << "\n";
+    if (code == kExitOk) code = kExitBadInput;
+  }
+  if (status == "completed") {
+    std::printf("done: %llu steps of %llu particles in %.3f s wall (%.3g particle-steps/s); "
+                "output in %s\n",
+                static_cast<unsigned long long>(step_),
+                static_cast<unsigned long long>(dem_.init.particle_count()), wall,
+                wall > 0 ? static_cast<double>(dem_.init.particle_count()) * step_ / wall : 0.0,
+                options_.out_dir.c_str());
+  }
+  return code;
+}
+
+}  // namespace rockcut::coupler

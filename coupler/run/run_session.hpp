@@ -1,0 +1,105 @@
+// One `coupler run`: load the scene, start the modules it needs, hand-shake, plan the time step,
+// drive the half-step synchronised loop (DESIGN section 3), record output, and end cleanly whatever
+// happens (module failure, stall, signal).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <zmq.hpp>
+
+#include "output/run_file.hpp"
+#include "output/summary_json.hpp"
+#include "run/module_link.hpp"
+#include "run/progress.hpp"
+#include "run/time_plan.hpp"
+#include "scene/scene_loader.hpp"
+
+namespace rockcut::coupler {
+
+/// Process exit codes of `coupler run`.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitVerificationFailed = 1,
+  kExitBadInput = 2,
+  kExitModuleFailed = 3,
+};
+
+struct RunOptions {
+  std::filesystem::path scene_path;
+  std::vector<std::string> overrides;  ///< --set path=value
+  std::filesystem::path out_dir;       ///< empty: out/<scene file stem>
+  Transport transport = Transport::ipc;
+  std::string dem_endpoint = "tcp://127.0.0.1:5555";    ///< tcp only
+  std::string fluid_endpoint = "tcp://127.0.0.1:5556";  ///< tcp only
+  std::filesystem::path module_dir;    ///< where dem_module and fluid_module are (the coupler's dir)
+};
+
+/// Runs the scene and returns the exit code. Messages go to stderr, the result lines to stdout.
+int run_scene(const RunOptions& options);
+
+class RunSession {
+ public:
+  RunSession(const RunOptions& options, scene::LoadedScene scene);
+  ~RunSession();
+  int run();
+
+ private:
+  struct ModuleInfo {
+    std::unique_ptr<ModuleLink> link;
+    wire::HelloReply hello;
+    wire::InitReply init;
+  };
+
+  // run_session.cpp: set-up and tear-down
+  void start_modules();
+  void init_modules();
+  void check_frame_fields();
+  void open_output();
+  void print_startup() const;
+  int finish(int code, const std::string& status, const std::string& reason);
+  std::filesystem::path module_executable(const std::string& from_scene, const char* name) const;
+
+  // run_loop.cpp: the clock
+  void loop();
+  void exchange(unsigned steps, bool initial);
+  void advance_dry(unsigned steps);
+  void record_step_report(const wire::StepReport& report);
+  void maybe_record(bool force_frame);
+  void write_frame();
+
+  RunOptions options_;
+  scene::LoadedScene loaded_;
+  const rockcut::Scene& scene_;
+  bool coupled_ = false;
+
+  std::optional<zmq::context_t> context_;
+  std::filesystem::path ipc_dir_;
+  ModuleInfo dem_;
+  std::optional<ModuleInfo> fluid_;
+  TimePlan plan_;
+  std::vector<std::string> dem_frame_fields_, fluid_frame_fields_;
+
+  std::unique_ptr<RunFile> run_file_;
+  Summary summary_;
+  std::unique_ptr<Progress> progress_;
+
+  // Clock state (advanced by the loop).
+  double time_s_ = 0.0;
+  std::uint64_t step_ = 0;
+  std::uint64_t next_series_step_ = 0;
+  std::uint64_t next_frame_index_ = 0;
+  std::uint64_t exchanges_ = 0;
+  std::uint64_t bytes_exchanged_ = 0;
+  std::vector<std::pair<std::string, double>> scalars_;
+  std::vector<double> initial_position_, last_position_;
+
+  // Reused messages: no allocation of message objects per exchange.
+  wire::Message request_, reply_, fluid_request_, fluid_reply_;
+};
+
+}  // namespace rockcut::coupler

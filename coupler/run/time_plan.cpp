@@ -1,0 +1,94 @@
+#include "run/time_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rockcut::coupler {
+
+namespace {
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+const Limit* smallest(const std::vector<Limit>& limits) {
+  const Limit* best = nullptr;
+  for (const Limit& l : limits) {
+    if (!best || l.dt_max_s < best->dt_max_s) best = &l;
+  }
+  return best;
+}
+
+std::string describe(const Limit& l) {
+  return l.module + " " + l.name + ": dt <= " + fmt(l.dt_max_s) + " s" +
+         (l.detail.empty() ? "" : " (" + l.detail + ")");
+}
+
+}  // namespace
+
+TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_limits,
+                   const std::vector<Limit>& fluid_limits, bool coupled) {
+  TimePlan plan;
+  for (const Limit& l : dem_limits) plan.report.push_back("limit  " + describe(l));
+  for (const Limit& l : fluid_limits) plan.report.push_back("limit  " + describe(l) + " (fluid step)");
+
+  const rockcut::Time& time = scene.time();
+  const Limit* dem_limit = smallest(dem_limits);
+  if (time.has_dt_s()) {
+    if (dem_limit && time.dt_s() > dem_limit->dt_max_s) {
+      throw PlanError("time.dt_s = " + fmt(time.dt_s()) + " s exceeds the " + dem_limit->module +
+                      " limit " + dem_limit->name + " (" + fmt(dem_limit->dt_max_s) + " s) by " +
+                      fmt(time.dt_s() / dem_limit->dt_max_s) + "x; lower time.dt_s or leave it "
+                      "out to use dt_safety * limit");
+    }
+    plan.dt_s = time.dt_s();
+    plan.binding = "time.dt_s set in the scene";
+  } else if (dem_limit) {
+    plan.dt_s = time.dt_safety() * dem_limit->dt_max_s;
+    plan.binding = dem_limit->module + " " + dem_limit->name + " x dt_safety " +
+                   fmt(time.dt_safety());
+  } else {
+    throw PlanError("no stability limit bounds the DEM step in this scene (no contacts or bonds); "
+                    "set time.dt_s");
+  }
+
+  const Limit* fluid_limit = smallest(fluid_limits);
+  if (coupled) {
+    const double max_n = fluid_limit ? std::floor(fluid_limit->dt_max_s / plan.dt_s) : 1e9;
+    if (fluid_limit && max_n < 1) {
+      throw PlanError("the fluid limit " + fluid_limit->name + " (" + fmt(fluid_limit->dt_max_s) +
+                      " s) is below the DEM step " + fmt(plan.dt_s) + " s; lower time.dt_s");
+    }
+    if (scene.coupling().has_interval()) {
+      plan.coupling_interval = scene.coupling().interval();
+      if (plan.coupling_interval > max_n) {
+        throw PlanError("coupling.interval = " + std::to_string(plan.coupling_interval) +
+                        " makes the fluid step " + fmt(plan.coupling_interval * plan.dt_s) +
+                        " s, above the " + fluid_limit->module + " limit " + fluid_limit->name +
+                        " (" + fmt(fluid_limit->dt_max_s) + " s) by " +
+                        fmt(plan.coupling_interval * plan.dt_s / fluid_limit->dt_max_s) +
+                        "x; use coupling.interval <= " + fmt(max_n));
+      }
+    } else {
+      // Without a fluid limit the paper's scheme (N = 1) is kept.
+      plan.coupling_interval = fluid_limit ? static_cast<unsigned>(std::min(max_n, 1e6)) : 1;
+    }
+  }
+  plan.total_steps = static_cast<std::uint64_t>(std::ceil(time.end_time_s() / plan.dt_s - 1e-9));
+  plan.report.push_back("chosen dt = " + fmt(plan.dt_s) + " s (binding: " + plan.binding + ")");
+  if (coupled) {
+    plan.report.push_back("chosen coupling interval N = " + std::to_string(plan.coupling_interval) +
+                          ", fluid step " + fmt(plan.coupling_interval * plan.dt_s) + " s" +
+                          (scene.coupling().has_interval() ? " (set in the scene)"
+                           : fluid_limit ? " (binding: " + fluid_limit->name + ")"
+                                         : " (no fluid limit: the paper's N = 1)"));
+  }
+  plan.report.push_back("steps: " + std::to_string(plan.total_steps) + " to t = " +
+                        fmt(time.end_time_s()) + " s");
+  return plan;
+}
+
+}  // namespace rockcut::coupler

@@ -1,0 +1,41 @@
+// Choosing the DEM step dt and the coupling interval N from the stability limits the modules report
+// (DESIGN section 5), or checking the scene's own choice against them.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rockcut/scene.pb.h"
+
+namespace rockcut::coupler {
+
+/// A stability limit as reported by a module.
+struct Limit {
+  std::string module;  ///< "dem_module", "fluid_module"
+  std::string name;
+  double dt_max_s = 0.0;
+  std::string detail;
+};
+
+/// The scene asks for more than a limit allows. what() names the limit, by how much it is exceeded
+/// and what to change.
+class PlanError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct TimePlan {
+  double dt_s = 0.0;
+  unsigned coupling_interval = 1;  ///< N: DEM steps per fluid step (1 for a dry scene)
+  std::uint64_t total_steps = 0;
+  std::string binding;             ///< which limit or setting fixed dt
+  std::vector<std::string> report; ///< one line per limit and choice, printed at start-up
+};
+
+/// dem_limits bound dt; fluid_limits bound the fluid step N * dt.
+TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_limits,
+                   const std::vector<Limit>& fluid_limits, bool coupled);
+
+}  // namespace rockcut::coupler

@@ -1,0 +1,47 @@
+#include "run/verification.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rockcut::coupler {
+
+VerificationResult verify(const rockcut::Scene& scene, std::span<const double> x0,
+                          std::span<const double> x, double time_s) {
+  const rockcut::Verification& v = scene.verification();
+  if (v.analytical() != "uniform_acceleration") {
+    throw std::invalid_argument("unknown analytical solution '" + v.analytical() + "'");
+  }
+  if (x0.size() != x.size()) throw std::invalid_argument("position arrays differ in size");
+  double ax = scene.dem().gravity_m_s2().x();
+  double ay = scene.dem().gravity_m_s2().y();
+  if (scene.has_fluid() && scene.fluid().model() == "prescribed_gradient") {
+    const rockcut::Vec2& g = scene.fluid().prescribed_gradient().pressure_gradient_pa_m();
+    ax -= g.x() / scene.dem().density_kg_m3();
+    ay -= g.y() / scene.dem().density_kg_m3();
+  }
+  const double vx = scene.dem().initial_velocity_m_s().x();
+  const double vy = scene.dem().initial_velocity_m_s().y();
+  const double t = time_s;
+  const double dx = vx * t + 0.5 * ax * t * t;  // the exact displacement, the same for every disc
+  const double dy = vy * t + 0.5 * ay * t * t;
+
+  double err_max = 0.0, err_sq = 0.0, disp_max = 0.0, disp_sq = 0.0;
+  for (std::size_t k = 0; k + 1 < x.size(); k += 2) {
+    const double ex = x[k] - (x0[k] + dx), ey = x[k + 1] - (x0[k + 1] + dy);
+    const double e2 = ex * ex + ey * ey, d2 = dx * dx + dy * dy;
+    err_max = std::max(err_max, std::sqrt(e2));
+    err_sq += e2;
+    disp_max = std::max(disp_max, std::sqrt(d2));
+    disp_sq += d2;
+  }
+  VerificationResult r;
+  r.analytical = v.analytical();
+  r.tolerance_rel = v.tolerance_rel();
+  r.error_max_rel = disp_max > 0 ? err_max / disp_max : err_max;
+  r.error_l2_rel = disp_sq > 0 ? std::sqrt(err_sq / disp_sq) : std::sqrt(err_sq);
+  r.passed = std::isfinite(r.error_max_rel) && r.error_max_rel <= r.tolerance_rel;
+  return r;
+}
+
+}  // namespace rockcut::coupler

@@ -1,0 +1,56 @@
+// The DEM state and its time integration: velocity Verlet, paper eqs. 5-8 (eq. 8's v^{i+1/2} is
+// v^{n+1/2}), split in two halves so the fluid can act between them (DESIGN section 3).
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "core/particles.hpp"
+
+namespace rockcut::dem {
+
+struct DemSettings {
+  double gravity_x_m_s2 = 0.0;
+  double gravity_y_m_s2 = 0.0;
+};
+
+class DemSystem {
+ public:
+  DemSystem(Particles particles, const DemSettings& settings);
+
+  /// One full step of dt [s]: half kick, drift, forces at x^{n+1}, half kick.
+  void step(double dt);
+  /// First half of a step: v^{n+1/2} = v^n + a^n dt/2 (eq. 6), x^{n+1} = x^n + v^{n+1/2} dt (eq. 5).
+  void begin_step(double dt);
+  /// Internal forces at x^{n+1}. They do not depend on the fluid, so the module computes them while
+  /// the fluid works; finish_step computes them itself if that has not happened.
+  void compute_internal_forces();
+  /// Second half: total force = internal + `external` (eq. 7), v^{n+1} = v^{n+1/2} + a dt/2 (eq. 8).
+  /// `external` (2 per particle, [N/m]) is held for later steps until replaced.
+  void finish_step(double dt, std::span<const double> external);
+  /// Replaces the held external force and re-evaluates a^n without moving (used at t = 0).
+  void set_external_force(std::span<const double> external);
+
+  const Particles& particles() const { return particles_; }
+  double time_s() const { return time_s_; }
+  std::uint64_t step_count() const { return steps_; }
+  bool in_split_step() const { return in_split_step_; }
+  bool internal_forces_current() const { return internal_forces_current_; }
+
+  /// Translational kinetic energy [J/m].
+  double kinetic_energy() const;
+
+ private:
+  void half_kick(double dt);
+  void drift(double dt);
+  void add_external_forces();
+
+  Particles particles_;
+  DemSettings settings_;
+  double time_s_ = 0.0;
+  std::uint64_t steps_ = 0;
+  bool in_split_step_ = false;
+  bool internal_forces_current_ = false;  // force holds the internal forces at x^{n+1}
+};
+
+}  // namespace rockcut::dem

@@ -1,0 +1,17 @@
+#include "core/particles.hpp"
+
+#include <numbers>
+
+namespace rockcut::dem {
+
+void Particles::add(double x, double y, double r, double rho) {
+  position.insert(position.end(), {x, y});
+  velocity.insert(velocity.end(), {0.0, 0.0});
+  force.insert(force.end(), {0.0, 0.0});
+  external_force.insert(external_force.end(), {0.0, 0.0});
+  radius.push_back(r);
+  const double mass = rho * std::numbers::pi * r * r;  // per metre of thickness
+  inv_mass.push_back(1.0 / mass);
+}
+
+}  // namespace rockcut::dem

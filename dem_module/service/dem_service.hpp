@@ -1,0 +1,40 @@
+// The DEM module's protocol handler: turns scene blocks into core structs at the edge, and answers
+// Advance / ApplyForces / FrameRequest with arrays copied straight from the particle arrays.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/dem_system.hpp"
+#include "wire/module_server.hpp"
+
+namespace rockcut::dem {
+
+class DemService final : public wire::ModuleHandler {
+ public:
+  wire::ModuleKind kind() const override { return wire::MODULE_KIND_DEM; }
+  std::string name() const override { return "dem_module"; }
+  std::string version() const override;
+  std::vector<std::string> models() const override { return {"dem"}; }
+  void handle(const wire::Message& request, wire::Message& reply) override;
+  void after_reply() override;
+
+ private:
+  void init(const wire::Init& init, wire::Message& reply);
+  void subscribe(const wire::Subscribe& subscribe, wire::Message& reply);
+  void advance(const wire::Advance& advance, wire::Message& reply);
+  void apply_forces(const wire::Message& request, wire::Message& reply);
+  void frame(const wire::FrameRequest& request, wire::Message& reply);
+  void add_field(std::string_view field, wire::Message& reply);
+  void report(wire::Message& reply) const;
+  DemSystem& system();
+
+  std::unique_ptr<DemSystem> system_;
+  std::vector<std::string> send_fields_;  // per-step fields the fluid asked for
+  std::vector<double> position_at_exchange_;  // for "displacement"
+  std::vector<double> scratch_;
+  double split_dt_s_ = 0.0;
+};
+
+}  // namespace rockcut::dem

@@ -1,0 +1,53 @@
+// The interface every fluid model implements. The service owns the wire; a model sees plain arrays.
+// Models are chosen by name in the scene (`fluid.model`) through models/registry.hpp.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rockcut::fluid {
+
+/// Largest stable step of a model's own integrator.
+struct StabilityLimit {
+  std::string name;
+  double dt_max_s = 0.0;
+  std::string detail;
+};
+
+/// Per-step kinematics; only the fields the model listed in needs() are filled.
+struct Kinematics {
+  std::span<const double> position;       ///< [m], 2 per particle, x^{n+N}
+  std::span<const double> velocity_half;  ///< [m/s], 2 per particle, v^{n+N-1/2}
+  std::span<const double> displacement;   ///< [m], 2 per particle, since the last exchange
+};
+
+/// Static particle data sent once at Init.
+struct StaticData {
+  std::span<const double> radius;    ///< [m]
+  std::span<const double> position;  ///< [m], 2 per particle, initial
+};
+
+class FluidModel {
+ public:
+  virtual ~FluidModel() = default;
+  virtual std::string name() const = 0;
+  /// Kinematics fields needed every exchange ("position", "velocity_half", "displacement").
+  virtual std::vector<std::string> needs() const = 0;
+  /// Static fields needed at Init ("radius", "position").
+  virtual std::vector<std::string> needs_static() const = 0;
+  /// Per-particle fields the model can output besides "force" (e.g. "pressure").
+  virtual std::vector<std::string> provides() const = 0;
+  virtual std::vector<StabilityLimit> limits() const = 0;
+
+  virtual void initialise(const StaticData& data) = 0;
+  /// Advances the model by dt [s] to time t [s] and writes the force on each particle
+  /// (2 per particle, [N per m thickness]) into `force`.
+  virtual void step(double dt_s, double time_s, const Kinematics& kinematics,
+                    std::span<double> force) = 0;
+  /// Writes an output field named in provides() (1 value per particle for scalars).
+  virtual void output(const std::string& field, std::vector<double>& values) const = 0;
+};
+
+}  // namespace rockcut::fluid

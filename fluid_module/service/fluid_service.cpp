@@ -1,0 +1,106 @@
+#include "service/fluid_service.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "models/registry.hpp"
+#include "wire/inproc_registry.hpp"
+#include "wire/protocol.hpp"
+
+namespace rockcut::fluid {
+
+namespace {
+bool contains(const std::vector<std::string>& v, std::string_view s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+}  // namespace
+
+std::string FluidService::version() const { return ROCKCUT_VERSION; }
+
+std::vector<std::string> FluidService::models() const { return model_names(); }
+
+FluidModel& FluidService::model() {
+  if (!model_) throw std::logic_error("fluid_module: request before Init");
+  return *model_;
+}
+
+void FluidService::handle(const wire::Message& request, wire::Message& reply) {
+  const wire::Envelope& e = request.envelope;
+  switch (e.body_case()) {
+    case wire::Envelope::kInit: return init(request, reply);
+    case wire::Envelope::kFluidStep: return step(request, reply);
+    case wire::Envelope::kFrameRequest: return frame(e.frame_request(), reply);
+    default:
+      throw std::invalid_argument("fluid_module: unexpected request (envelope body " +
+                                  std::to_string(e.body_case()) + ")");
+  }
+}
+
+void FluidService::init(const wire::Message& request, wire::Message& reply) {
+  model_ = make_model(request.envelope.init().scene());
+  needs_ = model_->needs();
+  StaticData data;
+  const std::vector<std::string> needs_static = model_->needs_static();
+  if (contains(needs_static, wire::field::kRadius)) {
+    data.radius = request.array(wire::field::kRadius, 1);
+    particle_count_ = data.radius.size();
+  }
+  if (contains(needs_static, wire::field::kPosition)) {
+    data.position = request.array(wire::field::kPosition, 2);
+    particle_count_ = data.position.size() / 2;
+  }
+  model_->initialise(data);
+  force_.assign(2 * particle_count_, 0.0);
+
+  wire::InitReply* r = reply.envelope.mutable_init_reply();
+  r->set_model(model_->name());
+  r->set_particle_count(particle_count_);
+  for (const auto& f : needs_) r->add_needs(f);
+  r->add_provides(std::string(wire::field::kForce));
+  for (const auto& f : model_->provides()) r->add_provides(f);
+  for (const StabilityLimit& l : model_->limits()) {
+    wire::StabilityLimit* w = r->add_limits();
+    w->set_name(l.name);
+    w->set_dt_max_s(l.dt_max_s);
+    w->set_detail(l.detail);
+  }
+}
+
+void FluidService::step(const wire::Message& request, wire::Message& reply) {
+  FluidModel& m = model();
+  const wire::FluidStep& s = request.envelope.fluid_step();
+  Kinematics k;
+  if (contains(needs_, wire::field::kPosition)) k.position = request.array(wire::field::kPosition, 2);
+  if (contains(needs_, wire::field::kVelocityHalf)) {
+    k.velocity_half = request.array(wire::field::kVelocityHalf, 2);
+  }
+  if (contains(needs_, wire::field::kDisplacement)) {
+    k.displacement = request.array(wire::field::kDisplacement, 2);
+  }
+  m.step(s.dt_s(), s.time_s(), k, force_);
+  reply.envelope.mutable_fluid_result();
+  reply.add_array(wire::field::kForce, force_, 2);
+}
+
+void FluidService::frame(const wire::FrameRequest& request, wire::Message& reply) {
+  FluidModel& m = model();
+  reply.envelope.mutable_frame();
+  for (const std::string& field : request.fields()) {
+    if (field == wire::field::kForce) {
+      reply.add_array(field, force_, 2);
+      continue;
+    }
+    m.output(field, output_);
+    reply.add_array(field, output_, output_.size() == 2 * particle_count_ ? 2 : 1);
+  }
+}
+
+namespace {
+int serve_inproc(zmq::context_t& context, const std::string& endpoint) {
+  FluidService service;
+  return wire::serve(context, endpoint, service);
+}
+const bool registered = wire::register_inproc_module(wire::MODULE_KIND_FLUID, &serve_inproc);
+}  // namespace
+
+}  // namespace rockcut::fluid

@@ -1,0 +1,35 @@
+// The fluid module's protocol handler: builds the scene's model, and answers FluidStep with the
+// force array. Any model registered in models/ is reachable by name.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "models/fluid_model.hpp"
+#include "wire/module_server.hpp"
+
+namespace rockcut::fluid {
+
+class FluidService final : public wire::ModuleHandler {
+ public:
+  wire::ModuleKind kind() const override { return wire::MODULE_KIND_FLUID; }
+  std::string name() const override { return "fluid_module"; }
+  std::string version() const override;
+  std::vector<std::string> models() const override;
+  void handle(const wire::Message& request, wire::Message& reply) override;
+
+ private:
+  void init(const wire::Message& request, wire::Message& reply);
+  void step(const wire::Message& request, wire::Message& reply);
+  void frame(const wire::FrameRequest& request, wire::Message& reply);
+  FluidModel& model();
+
+  std::unique_ptr<FluidModel> model_;
+  std::vector<std::string> needs_;
+  std::size_t particle_count_ = 0;
+  std::vector<double> force_;
+  std::vector<double> output_;
+};
+
+}  // namespace rockcut::fluid

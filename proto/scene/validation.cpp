@@ -1,0 +1,160 @@
+#include "scene/validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "rockcut/options.pb.h"
+#include "scene/field_docs.hpp"
+#include "scene/format.hpp"
+#include "scene/nearest_name.hpp"
+
+namespace rockcut::scene {
+namespace {
+
+namespace pb = google::protobuf;
+using Tree = pb::TextFormat::ParseInfoTree;
+using Field = pb::FieldDescriptor;
+
+struct Number {
+  double value;
+  std::string text;  // as the user would write it
+};
+
+template <class T>
+T get(const pb::Message& m, const Field& f, int index,
+      T (pb::Reflection::*single)(const pb::Message&, const Field*) const,
+      T (pb::Reflection::*repeated)(const pb::Message&, const Field*, int) const) {
+  const pb::Reflection& r = *m.GetReflection();
+  return f.is_repeated() ? (r.*repeated)(m, &f, index) : (r.*single)(m, &f);
+}
+
+template <class T>
+Number integer(T value) {
+  return {static_cast<double>(value), std::to_string(value)};
+}
+
+// The value of a numeric field (element `index` of a repeated one); nullopt for other types.
+std::optional<Number> number_of(const pb::Message& m, const Field& f, int index) {
+  using R = pb::Reflection;
+  switch (f.cpp_type()) {
+    case Field::CPPTYPE_INT32:
+      return integer(get(m, f, index, &R::GetInt32, &R::GetRepeatedInt32));
+    case Field::CPPTYPE_INT64:
+      return integer(get(m, f, index, &R::GetInt64, &R::GetRepeatedInt64));
+    case Field::CPPTYPE_UINT32:
+      return integer(get(m, f, index, &R::GetUInt32, &R::GetRepeatedUInt32));
+    case Field::CPPTYPE_UINT64:
+      return integer(get(m, f, index, &R::GetUInt64, &R::GetRepeatedUInt64));
+    case Field::CPPTYPE_DOUBLE: {
+      const double value = get(m, f, index, &R::GetDouble, &R::GetRepeatedDouble);
+      return Number{value, format_double(value)};
+    }
+    case Field::CPPTYPE_FLOAT: {
+      const double value = get(m, f, index, &R::GetFloat, &R::GetRepeatedFloat);
+      return Number{value, format_double(value)};
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+bool in_bounds(double value, const pb::FieldOptions& options) {
+  return !(options.HasExtension(rockcut::greater_than) && !(value > options.GetExtension(rockcut::greater_than))) &&
+         !(options.HasExtension(rockcut::min) && !(value >= options.GetExtension(rockcut::min))) &&
+         !(options.HasExtension(rockcut::max) && !(value <= options.GetExtension(rockcut::max)));
+}
+
+class Validator {
+ public:
+  Validator(const std::string& file, const OverrideSites& sites) : file_(file), sites_(sites) {}
+
+  // `opening` is where the message starts: missing fields are reported there.
+  void check_message(const pb::Message& message, const std::string& path, const Tree* tree,
+                     const Location& opening) {
+    const pb::Descriptor& type = *message.GetDescriptor();
+    const pb::Reflection& r = *message.GetReflection();
+    for (int i = 0; i < type.field_count(); ++i) {
+      const Field& field = *type.field(i);
+      const std::string field_path = path.empty() ? field.name() : path + "." + field.name();
+      const int count = field.is_repeated() ? r.FieldSize(message, &field)
+                                            : (r.HasField(message, &field) ? 1 : 0);
+      if (count == 0 && field.options().GetExtension(rockcut::required)) {
+        const std::string_view doc = field_doc(field.full_name());
+        report(opening, "missing required field \"" + field_path + "\"" +
+                            unit_suffix(field.options()) + (doc.empty() ? "" : ": ") + std::string(doc));
+      }
+      for (int k = 0; k < count; ++k) {
+        const int index = field.is_repeated() ? k : -1;
+        const std::string value_path =
+            field.is_repeated() ? field_path + "[" + std::to_string(k) + "]" : field_path;
+        const Location at = where(message, field, index, tree, opening);
+        if (field.cpp_type() == Field::CPPTYPE_MESSAGE) {
+          const pb::Message& child = field.is_repeated() ? r.GetRepeatedMessage(message, &field, k)
+                                                         : r.GetMessage(message, &field);
+          check_message(child, value_path, tree ? tree->GetTreeForNested(&field, index) : nullptr, at);
+        } else {
+          check_value(message, field, index, value_path, at);
+        }
+      }
+    }
+  }
+
+  std::vector<Diagnostic> diagnostics;
+
+ private:
+  void check_value(const pb::Message& message, const Field& field, int index, const std::string& path,
+                   const Location& at) {
+    const pb::FieldOptions& options = field.options();
+    if (const auto number = number_of(message, field, index)) {
+      if (!std::isfinite(number->value))
+        report(at, path + " = " + number->text + " is not a finite number");
+      else if (!in_bounds(number->value, options))
+        report(at, path + " = " + number->text + " is out of range: must be " + bounds_text(options) +
+                       unit_suffix(options));
+    }
+    if (field.cpp_type() == Field::CPPTYPE_STRING && options.HasExtension(rockcut::choices)) {
+      const pb::Reflection& r = *message.GetReflection();
+      const std::string value = field.is_repeated() ? r.GetRepeatedString(message, &field, index)
+                                                    : r.GetString(message, &field);
+      const std::vector<std::string> allowed = split_choices(options.GetExtension(rockcut::choices));
+      if (std::find(allowed.begin(), allowed.end(), value) == allowed.end())
+        report(at, path + " = \"" + value + "\" is not allowed; choose one of: " + join(allowed, ", ") +
+                       did_you_mean(value, allowed));
+    }
+  }
+
+  // Where a field's value was written: the override that set it, else its place in the file,
+  // else (a field the tree does not know) the start of its message.
+  Location where(const pb::Message& message, const Field& field, int index, const Tree* tree,
+                 const Location& opening) const {
+    if (const auto site = sites_.find({&message, &field}); site != sites_.end()) return site->second;
+    if (tree == nullptr) return opening;
+    if (field.is_repeated()) {
+      // `f: [a, b]` is recorded once for all its values: then use the first record.
+      int recorded = 0;
+      while (tree->GetLocation(&field, recorded).line >= 0) ++recorded;
+      if (recorded != message.GetReflection()->FieldSize(message, &field)) index = 0;
+    }
+    const auto location = tree->GetLocation(&field, index);
+    return location.line < 0 ? opening : Location{file_, location.line + 1, location.column + 1};
+  }
+
+  void report(const Location& at, std::string message) {
+    diagnostics.push_back({at.file, at.line, at.column, std::move(message)});
+  }
+
+  const std::string& file_;
+  const OverrideSites& sites_;
+};
+
+}  // namespace
+
+std::vector<Diagnostic> validate(const pb::Message& root, const std::string& file, const Tree* tree,
+                                 const OverrideSites& sites) {
+  Validator validator(file, sites);
+  validator.check_message(root, "", tree, {file, 1, 1});
+  return std::move(validator.diagnostics);
+}
+
+}  // namespace rockcut::scene

@@ -1,0 +1,22 @@
+// Checking a parsed scene against the field options of its schema (rockcut/options.proto).
+#pragma once
+
+#include <google/protobuf/message.h>
+#include <google/protobuf/text_format.h>
+
+#include <string>
+#include <vector>
+
+#include "scene/overrides.hpp"
+#include "scene/scene_loader.hpp"
+
+namespace rockcut::scene {
+
+/// Walks the whole message tree by reflection and reports every field that breaks its
+/// (required), (min), (max), (greater_than) or (choices) option, or is a NaN or infinite number.
+/// Positions come from `tree` (the parse of `file`) or, for overridden fields, from `sites`.
+std::vector<Diagnostic> validate(const google::protobuf::Message& root, const std::string& file,
+                                 const google::protobuf::TextFormat::ParseInfoTree* tree,
+                                 const OverrideSites& sites);
+
+}  // namespace rockcut::scene

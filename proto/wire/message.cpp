@@ -1,0 +1,118 @@
+#include "wire/message.hpp"
+
+#include <cstring>
+
+#include "wire/protocol.hpp"
+
+namespace rockcut::wire {
+
+std::string_view kind_name(ModuleKind kind) {
+  switch (kind) {
+    case MODULE_KIND_DEM: return "dem_module";
+    case MODULE_KIND_FLUID: return "fluid_module";
+    default: return "unknown module";
+  }
+}
+
+void Message::add_array(std::string_view name, std::span<const double> values,
+                        std::uint32_t components) {
+  if (components == 0 || values.size() % components != 0) {
+    throw ProtocolError("array '" + std::string(name) + "': " + std::to_string(values.size()) +
+                        " values are not a multiple of " + std::to_string(components));
+  }
+  ArrayHeader* header = envelope.add_arrays();
+  header->set_name(std::string(name));
+  header->set_dtype(DTYPE_F64);
+  header->set_count(values.size() / components);
+  header->set_components(components);
+  frames_.emplace_back(values.data(), values.size_bytes());
+}
+
+void Message::take_arrays(Message& other) {
+  for (int i = 0; i < other.envelope.arrays_size(); ++i) {
+    *envelope.add_arrays() = other.envelope.arrays(i);
+    frames_.push_back(std::move(other.frames_[static_cast<std::size_t>(i)]));
+  }
+  other.envelope.clear_arrays();
+  other.frames_.clear();
+  other.aligned_copies_.clear();
+}
+
+bool Message::has_array(std::string_view name) const {
+  for (const ArrayHeader& h : envelope.arrays()) {
+    if (h.name() == name) return true;
+  }
+  return false;
+}
+
+std::span<const double> Message::array(std::string_view name, std::uint32_t components) const {
+  for (int i = 0; i < envelope.arrays_size(); ++i) {
+    const ArrayHeader& h = envelope.arrays(i);
+    if (h.name() != name) continue;
+    if (h.components() != components || h.dtype() != DTYPE_F64) {
+      throw ProtocolError("array '" + std::string(name) + "' has " +
+                          std::to_string(h.components()) + " components, expected " +
+                          std::to_string(components));
+    }
+    const zmq::message_t& frame = frames_.at(static_cast<std::size_t>(i));
+    const std::size_t n = h.count() * h.components();
+    if (frame.size() != n * sizeof(double)) {
+      throw ProtocolError("array '" + std::string(name) + "': frame of " +
+                          std::to_string(frame.size()) + " bytes for " + std::to_string(n) +
+                          " doubles");
+    }
+    const void* data = frame.data();
+    if (reinterpret_cast<std::uintptr_t>(data) % alignof(double) == 0) {
+      return {static_cast<const double*>(data), n};
+    }
+    auto& copy = aligned_copies_.emplace_back(n);
+    std::memcpy(copy.data(), data, frame.size());
+    return copy;
+  }
+  throw ProtocolError("message lacks the array '" + std::string(name) + "'");
+}
+
+void Message::clear() {
+  envelope.Clear();
+  frames_.clear();
+  aligned_copies_.clear();
+}
+
+std::size_t Message::payload_bytes() const {
+  std::size_t bytes = 0;
+  for (const auto& f : frames_) bytes += f.size();
+  return bytes;
+}
+
+void Message::send(zmq::socket_t& socket) {
+  const std::string head = envelope.SerializeAsString();
+  const bool more = !frames_.empty();
+  socket.send(zmq::buffer(head), more ? zmq::send_flags::sndmore : zmq::send_flags::none);
+  for (std::size_t i = 0; i < frames_.size(); ++i) {
+    const bool last = i + 1 == frames_.size();
+    socket.send(frames_[i], last ? zmq::send_flags::none : zmq::send_flags::sndmore);
+  }
+  frames_.clear();  // sent frames are moved out by ZeroMQ
+}
+
+void Message::receive(zmq::socket_t& socket) {
+  clear();
+  zmq::message_t head;
+  if (!socket.recv(head, zmq::recv_flags::none)) throw ProtocolError("receive interrupted");
+  if (!envelope.ParseFromArray(head.data(), static_cast<int>(head.size()))) {
+    throw ProtocolError("frame 0 is not a rockcut.wire.Envelope");
+  }
+  bool more = head.more();
+  while (more) {
+    zmq::message_t part;
+    if (!socket.recv(part, zmq::recv_flags::none)) throw ProtocolError("receive interrupted");
+    more = part.more();
+    frames_.push_back(std::move(part));
+  }
+  if (frames_.size() != static_cast<std::size_t>(envelope.arrays_size())) {
+    throw ProtocolError("envelope announces " + std::to_string(envelope.arrays_size()) +
+                        " arrays, " + std::to_string(frames_.size()) + " frames arrived");
+  }
+}
+
+}  // namespace rockcut::wire

@@ -1,0 +1,58 @@
+// A protocol message: an Envelope (frame 0) plus raw array frames (frames 1..k).
+//
+// Arrays are copied once into ZeroMQ frames and read in place on the other side: no per-element
+// encoding. bench/bench_exchange compares this with packed repeated protobuf fields.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <zmq.hpp>
+
+#include "rockcut/wire.pb.h"
+
+namespace rockcut::wire {
+
+/// A malformed or unexpected message (a programming or version error, not a user error).
+class ProtocolError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Message {
+ public:
+  Envelope envelope;
+
+  /// Appends `values` (count * components doubles) as a raw frame named `name`.
+  void add_array(std::string_view name, std::span<const double> values, std::uint32_t components);
+
+  /// Moves every array of `other` into this message without copying the data (the coupler
+  /// forwards kinematics and forces between modules this way).
+  void take_arrays(Message& other);
+
+  bool has_array(std::string_view name) const;
+  /// The array `name`; throws ProtocolError if it is missing or has other components.
+  std::span<const double> array(std::string_view name, std::uint32_t components) const;
+
+  /// Drops the envelope and the arrays (keeps capacity for reuse).
+  void clear();
+
+  /// Sends all frames. Throws zmq::error_t on transport errors.
+  void send(zmq::socket_t& socket);
+  /// Receives one whole message (blocking). Throws ProtocolError if it is malformed.
+  void receive(zmq::socket_t& socket);
+
+  /// Bytes of array payload (for transport statistics).
+  std::size_t payload_bytes() const;
+
+ private:
+  std::vector<zmq::message_t> frames_;  // frames_[i] holds envelope.arrays(i)
+  // Small frames may be stored unaligned inside ZeroMQ; such arrays are copied here to read them.
+  mutable std::vector<std::vector<double>> aligned_copies_;
+};
+
+}  // namespace rockcut::wire

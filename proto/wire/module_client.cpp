@@ -1,0 +1,65 @@
+#include "wire/module_client.hpp"
+
+#include <algorithm>
+
+namespace rockcut::wire {
+
+namespace {
+// How often a waiting coupler looks at process liveness and signals.
+constexpr std::chrono::milliseconds kPollSlice{50};
+}  // namespace
+
+ModuleClient::ModuleClient(zmq::context_t& context, std::string module_name,
+                           const std::string& endpoint, std::chrono::milliseconds timeout,
+                           ClientHooks hooks)
+    : name_(std::move(module_name)),
+      socket_(context, zmq::socket_type::req),
+      timeout_(timeout),
+      hooks_(std::move(hooks)) {
+  socket_.set(zmq::sockopt::linger, 0);
+  socket_.connect(endpoint);
+}
+
+void ModuleClient::send(Message& request) {
+  try {
+    request.send(socket_);
+  } catch (const zmq::error_t& e) {
+    throw ModuleFailure(name_, std::string("cannot send: ") + e.what());
+  }
+}
+
+void ModuleClient::receive(Message& reply) {
+  using clock = std::chrono::steady_clock;
+  const auto deadline = clock::now() + timeout_;
+  for (;;) {
+    zmq::pollitem_t item{socket_.handle(), 0, ZMQ_POLLIN, 0};
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - clock::now());
+    const auto slice = std::clamp(left, std::chrono::milliseconds(0), kPollSlice);
+    zmq::poll(&item, 1, slice);
+    if (item.revents & ZMQ_POLLIN) break;
+    if (hooks_.interrupted && hooks_.interrupted()) throw Interrupted();
+    if (hooks_.dead) {
+      if (auto why = hooks_.dead()) throw ModuleFailure(name_, "the process " + *why);
+    }
+    if (clock::now() >= deadline) {
+      throw ModuleFailure(name_, "stopped answering (no reply within " +
+                                     std::to_string(timeout_.count() / 1000.0).substr(0, 6) +
+                                     " s, the coupling timeout)");
+    }
+  }
+  try {
+    reply.receive(socket_);
+  } catch (const ProtocolError& e) {
+    throw ModuleFailure(name_, std::string("sent a malformed message: ") + e.what());
+  }
+  if (reply.envelope.has_error()) {
+    throw ModuleFailure(name_, reply.envelope.error().message());
+  }
+}
+
+void ModuleClient::request(Message& request, Message& reply) {
+  send(request);
+  receive(reply);
+}
+
+}  // namespace rockcut::wire

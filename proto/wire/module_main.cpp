@@ -1,0 +1,32 @@
+#include "wire/module_main.hpp"
+
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+namespace rockcut::wire {
+
+int module_main(int argc, char** argv, ModuleHandler& handler) {
+  CLI::App app{handler.name() + " " + handler.version() +
+               ": a rockcut module. Normally started by `coupler run`; start it by hand to attach "
+               "a coupler over tcp (`coupler run CASE --transport tcp ...`)."};
+  std::string endpoint = "tcp://127.0.0.1:5555";
+  app.add_option("--bind", endpoint,
+                 "ZeroMQ endpoint to serve on, e.g. tcp://127.0.0.1:5555 or ipc:///tmp/x.sock")
+      ->capture_default_str();
+  ServeOptions options;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    zmq::context_t context(1);
+    return serve(context, endpoint, handler, options);
+  } catch (const zmq::error_t& e) {
+    std::cerr << handler.name() << ": cannot serve on " << endpoint << ": " << e.what() << "\n";
+    return 2;
+  }
+}
+
+}  // namespace rockcut::wire

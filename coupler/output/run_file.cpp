@@ -1,5 +1,6 @@
 #include "output/run_file.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numeric>
@@ -148,6 +149,9 @@ void RunFile::write_frame(double time_s, std::uint64_t step, std::size_t particl
                           const std::vector<FrameField>& fields) {
   Impl& m = *impl_;
   m.require_open();
+  if (!std::isfinite(time_s)) {
+    throw std::invalid_argument(m.ctx + ": frame time is not finite");  // XDMF needs a real time
+  }
   validate_frame_fields(particle_count, fields, m.ctx);
   const std::string path = frame_group_path(m.frames);
   try {

@@ -28,7 +28,7 @@ namespace rockcut::coupler {
 namespace {
 
 std::string format_double(double value) {
-  if (!std::isfinite(value)) return "0";  // times are finite; keep the XML parseable regardless
+  if (!std::isfinite(value)) return "0";  // RunFile rejects such times; keep the XML valid anyway
   char buf[32];
   const auto result = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 17);
   return std::string(buf, result.ptr);

@@ -153,6 +153,7 @@ TEST(RunFileFrames, MalformedFramesAreRejectedAndLeaveNoGroup) {
                  std::invalid_argument);
     EXPECT_THROW(run.write_frame(0, 0, kN, {{"position", 2, xy}, {"position", 2, xy}}),
                  std::invalid_argument);
+    EXPECT_THROW(run.write_frame(NAN, 0, kN, {{"position", 2, xy}}), std::invalid_argument);
     EXPECT_EQ(run.frame_count(), 0u);
     run.write_frame(1.0, 1, kN, {{"position", 2, xy}});
     EXPECT_EQ(run.frame_count(), 1u);

@@ -215,7 +215,7 @@ bool apply_one(std::string_view text, int index, pb::Message& root, OverrideSite
     const pb::Reflection& r = *message->GetReflection();
     const bool created = !r.HasField(*message, step.field);
     pb::Message* child = r.MutableMessage(message, step.field);
-    if (false) sites[{message, step.field}] = {"--set", index, step.column};
+    if (created) sites[{message, step.field}] = {"--set", index, step.column};
     message = child;
   }
   set_scalar(*message, target, *scalar);

@@ -5,8 +5,7 @@
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/descriptor.pb.h>
 
-#include <algorithm>
-#include <deque>
+#include <cctype>
 #include <fstream>
 #include <iostream>
 #include <map>

@@ -2,6 +2,8 @@
 
 #include <google/protobuf/io/tokenizer.h>
 
+#include <algorithm>
+#include <cctype>
 #include <deque>
 #include <regex>
 #include <set>
@@ -53,7 +55,7 @@ std::size_t char_index(const std::string& line, int column) {
 
 // Protobuf reports some errors at the token after the name they are about (the ':' after an unknown
 // field, the line after a bad enum value): move the position back to the name itself.
-void point_at_name(const std::vector<std::string>& lines, const std::string& name, RawError& error) { return;
+void point_at_name(const std::vector<std::string>& lines, const std::string& name, RawError& error) {
   for (int l = std::min<int>(error.line, static_cast<int>(lines.size()) - 1); l >= 0; --l) {
     const std::string& line = lines[l];
     std::size_t end = l == error.line ? char_index(line, error.column) : line.size();
@@ -136,7 +138,7 @@ TextParse parse_text(const std::string& text, const std::string& name, pb::Messa
   pb::TextFormat::Parser parser;
   parser.RecordErrorsTo(&collector);
   parser.WriteLocationsTo(&tree);
-  
+  parser.AllowUnknownField(true);
   TextParse result;
   result.complete = parser.ParseFromString(text, &message);
 

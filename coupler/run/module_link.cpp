@@ -125,11 +125,17 @@ void ModuleLink::close() {
   if (closed_) return;
   closed_ = true;
   try {
-    if (!failed_ && !awaiting_reply_) {
-      wire::Message request, reply;
+    client_->set_timeout(std::chrono::milliseconds(2000));
+    wire::Message request, reply;
+    if (!failed_ && awaiting_reply_) {
+      // Interrupted while the module worked: collect its answer so the session can end politely.
+      client_->receive(reply, /*interruptible=*/false);
+      awaiting_reply_ = false;
+    }
+    if (!failed_) {
       request.envelope.mutable_shutdown();
-      client_->set_timeout(std::chrono::milliseconds(2000));
-      client_->request(request, reply);
+      client_->send(request);
+      client_->receive(reply, /*interruptible=*/false);
     }
   } catch (const std::exception&) {
     // Already failing: the process is stopped below.

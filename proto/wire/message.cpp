@@ -1,5 +1,6 @@
 #include "wire/message.hpp"
 
+#include <cerrno>
 #include <cstring>
 
 #include "wire/protocol.hpp"
@@ -84,28 +85,56 @@ std::size_t Message::payload_bytes() const {
   return bytes;
 }
 
+namespace {
+// Sends one part, resuming after a signal handler ran (EINTR).
+void send_part(zmq::socket_t& socket, zmq::message_t& part, zmq::send_flags flags) {
+  for (;;) {
+    try {
+      socket.send(part, flags);
+      return;
+    } catch (const zmq::error_t& e) {
+      if (e.num() != EINTR) throw;
+    }
+  }
+}
+}  // namespace
+
 void Message::send(zmq::socket_t& socket) {
-  const std::string head = envelope.SerializeAsString();
+  const std::string head_bytes = envelope.SerializeAsString();
+  zmq::message_t head(head_bytes.data(), head_bytes.size());
   const bool more = !frames_.empty();
-  socket.send(zmq::buffer(head), more ? zmq::send_flags::sndmore : zmq::send_flags::none);
+  send_part(socket, head, more ? zmq::send_flags::sndmore : zmq::send_flags::none);
   for (std::size_t i = 0; i < frames_.size(); ++i) {
     const bool last = i + 1 == frames_.size();
-    socket.send(frames_[i], last ? zmq::send_flags::none : zmq::send_flags::sndmore);
+    send_part(socket, frames_[i], last ? zmq::send_flags::none : zmq::send_flags::sndmore);
   }
   frames_.clear();  // sent frames are moved out by ZeroMQ
 }
 
+namespace {
+// Blocking receive that resumes after a signal handler ran (EINTR).
+void receive_part(zmq::socket_t& socket, zmq::message_t& part) {
+  for (;;) {
+    try {
+      if (socket.recv(part, zmq::recv_flags::none)) return;
+    } catch (const zmq::error_t& e) {
+      if (e.num() != EINTR) throw;
+    }
+  }
+}
+}  // namespace
+
 void Message::receive(zmq::socket_t& socket) {
   clear();
   zmq::message_t head;
-  if (!socket.recv(head, zmq::recv_flags::none)) throw ProtocolError("receive interrupted");
+  receive_part(socket, head);
   if (!envelope.ParseFromArray(head.data(), static_cast<int>(head.size()))) {
     throw ProtocolError("frame 0 is not a rockcut.wire.Envelope");
   }
   bool more = head.more();
   while (more) {
     zmq::message_t part;
-    if (!socket.recv(part, zmq::recv_flags::none)) throw ProtocolError("receive interrupted");
+    receive_part(socket, part);
     more = part.more();
     frames_.push_back(std::move(part));
   }

@@ -28,16 +28,23 @@ void ModuleClient::send(Message& request) {
   }
 }
 
-void ModuleClient::receive(Message& reply) {
+void ModuleClient::receive(Message& reply, bool interruptible) {
   using clock = std::chrono::steady_clock;
   const auto deadline = clock::now() + timeout_;
+  // Checked before waiting too: fast replies would otherwise never leave time to notice a signal.
+  if (interruptible && hooks_.interrupted && hooks_.interrupted()) throw Interrupted();
   for (;;) {
     zmq::pollitem_t item{socket_.handle(), 0, ZMQ_POLLIN, 0};
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - clock::now());
     const auto slice = std::clamp(left, std::chrono::milliseconds(0), kPollSlice);
-    zmq::poll(&item, 1, slice);
+    try {
+      zmq::poll(&item, 1, slice);
+    } catch (const zmq::error_t& e) {
+      if (e.num() != EINTR) throw ModuleFailure(name_, std::string("poll failed: ") + e.what());
+      item.revents = 0;  // a signal arrived: look at the hooks below
+    }
     if (item.revents & ZMQ_POLLIN) break;
-    if (hooks_.interrupted && hooks_.interrupted()) throw Interrupted();
+    if (interruptible && hooks_.interrupted && hooks_.interrupted()) throw Interrupted();
     if (hooks_.dead) {
       if (auto why = hooks_.dead()) throw ModuleFailure(name_, "the process " + *why);
     }

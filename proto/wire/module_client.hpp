@@ -49,8 +49,8 @@ class ModuleClient {
   /// Sends a request; pair with receive(). Splitting the two lets the coupler overlap work.
   void send(Message& request);
   /// Waits for the answer. Throws ModuleFailure (dead, stalled past the timeout, Error reply,
-  /// malformed reply) or Interrupted.
-  void receive(Message& reply);
+  /// malformed reply) or, if `interruptible`, Interrupted.
+  void receive(Message& reply, bool interruptible = true);
   /// send() then receive().
   void request(Message& request, Message& reply);
 

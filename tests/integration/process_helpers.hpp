@@ -1,0 +1,59 @@
+// Launching the real executables from tests: spawn with output captured to files, wait with a
+// deadline, find a process's children, tell whether a pid is gone.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rockcut::test {
+
+struct Spawned {
+  pid_t pid = -1;
+  std::filesystem::path out_file, err_file;
+};
+
+/// Kills (SIGKILL) and reaps the process when the scope ends if it is still running, so a failing
+/// test leaves nothing behind.
+struct KillOnExit {
+  pid_t pid;
+  ~KillOnExit();
+};
+
+/// Starts `argv` (argv[0] is the program path) with stdout/stderr into files under `dir`.
+Spawned spawn(const std::vector<std::string>& argv, const std::filesystem::path& dir,
+              const std::string& tag);
+
+/// Waits for `pid`; returns its exit code (128 + signal if killed), or nullopt on timeout.
+std::optional<int> wait_exit(pid_t pid, std::chrono::milliseconds timeout);
+
+/// Runs to completion (with a deadline; the process is killed after it) and returns the exit code.
+int run(const std::vector<std::string>& argv, const std::filesystem::path& dir,
+        const std::string& tag, std::string* out = nullptr, std::string* err = nullptr,
+        std::chrono::milliseconds timeout = std::chrono::milliseconds(120000));
+
+/// Direct children of `pid` (from /proc).
+std::vector<pid_t> children_of(pid_t pid);
+/// Waits until `pid` has at least `n` children; returns them (empty on timeout).
+std::vector<pid_t> wait_for_children(pid_t pid, std::size_t n, std::chrono::milliseconds timeout);
+/// True if no live (non-zombie) process has this pid.
+bool is_gone(pid_t pid);
+/// The command name of `pid` (/proc/pid/comm), or "".
+std::string command_name(pid_t pid);
+
+std::string read_file(const std::filesystem::path& file);
+/// A loopback TCP port that was free a moment ago.
+int free_tcp_port();
+
+/// ROCKCUT_BIN_DIR / name
+std::string bin(const std::string& name);
+/// ROCKCUT_SOURCE_DIR / relative
+std::string source(const std::string& relative);
+/// A fresh directory under ROCKCUT_TEST_TMP for one test.
+std::filesystem::path fresh_dir(const std::string& name);
+
+}  // namespace rockcut::test

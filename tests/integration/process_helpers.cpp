@@ -7,6 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -144,7 +147,12 @@ std::string source(const std::string& relative) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(ROCKCUT_TEST_TMP) / "integration" / name;
+  // ctest runs tests in parallel: the test's own name keeps their directories apart.
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string owner = test ? std::string(test->test_suite_name()) + "." + test->name() : "";
+  std::string unique = owner + "/" + name;
+  std::replace(unique.begin(), unique.end(), '/', '_');
+  const fs::path dir = fs::path(ROCKCUT_TEST_TMP) / "integration" / unique;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -53,7 +53,7 @@ int free_tcp_port();
 std::string bin(const std::string& name);
 /// ROCKCUT_SOURCE_DIR / relative
 std::string source(const std::string& relative);
-/// A fresh directory under ROCKCUT_TEST_TMP for one test.
+/// A fresh directory under ROCKCUT_TEST_TMP, unique to the running test and `name`.
 std::filesystem::path fresh_dir(const std::string& name);
 
 }  // namespace rockcut::test

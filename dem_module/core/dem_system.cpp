@@ -23,6 +23,20 @@ void DemSystem::half_kick(double dt) {
   }
 }
 
+void DemSystem::set_prescribed_velocity(double t) {
+  const PrescribedMotion& m = *settings_.prescribed_motion;
+  const bool active = t >= m.start_time_s && t < m.end_time_s;
+  const double exx = active ? m.strain_rate_xx_per_s : 0.0;
+  const double eyy = active ? m.strain_rate_yy_per_s : 0.0;
+  const std::size_t n = particles_.size();
+  double* v = particles_.velocity.data();
+  const double* x = particles_.position.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    v[2 * i] = exx * (x[2 * i] - m.origin_x_m);
+    v[2 * i + 1] = eyy * (x[2 * i + 1] - m.origin_y_m);
+  }
+}
+
 void DemSystem::drift(double dt) {
   const std::size_t m = particles_.position.size();
   double* x = particles_.position.data();
@@ -52,13 +66,17 @@ void DemSystem::step(double dt) {
   begin_step(dt);
   compute_internal_forces();
   add_external_forces();
-  half_kick(dt);
+  if (!settings_.prescribed_motion) half_kick(dt);
   in_split_step_ = false;
 }
 
 void DemSystem::begin_step(double dt) {
   if (in_split_step_) throw std::logic_error("begin_step inside a split step");
-  half_kick(dt);
+  if (settings_.prescribed_motion) {
+    set_prescribed_velocity(time_s_ + 0.5 * dt);  // v^{n+1/2} of the field
+  } else {
+    half_kick(dt);
+  }
   drift(dt);
   time_s_ += dt;
   ++steps_;
@@ -69,7 +87,7 @@ void DemSystem::begin_step(double dt) {
 void DemSystem::finish_step(double dt, std::span<const double> external) {
   if (!in_split_step_) throw std::logic_error("finish_step without begin_step");
   set_external_force(external);
-  half_kick(dt);
+  if (!settings_.prescribed_motion) half_kick(dt);
   in_split_step_ = false;
 }
 

@@ -3,15 +3,27 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "core/particles.hpp"
 
 namespace rockcut::dem {
 
+/// A uniform deformation that replaces Newton's law (fluid-only verification scenes):
+/// v = diag(exx, eyy) (x - origin) for start <= t < end, else 0.
+struct PrescribedMotion {
+  double strain_rate_xx_per_s = 0.0;
+  double strain_rate_yy_per_s = 0.0;
+  double origin_x_m = 0.0, origin_y_m = 0.0;
+  double start_time_s = 0.0;
+  double end_time_s = 1e300;
+};
+
 struct DemSettings {
   double gravity_x_m_s2 = 0.0;
   double gravity_y_m_s2 = 0.0;
+  std::optional<PrescribedMotion> prescribed_motion;
 };
 
 class DemSystem {
@@ -42,6 +54,8 @@ class DemSystem {
 
  private:
   void half_kick(double dt);
+  /// Prescribed motion: the velocity of the field at the mid-step time t (replaces the kicks).
+  void set_prescribed_velocity(double t);
   void drift(double dt);
   void add_external_forces();
 

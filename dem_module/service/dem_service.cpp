@@ -71,6 +71,17 @@ void DemService::init(const wire::Init& init, wire::Message& reply) {
   DemSettings settings;
   settings.gravity_x_m_s2 = dem.gravity_m_s2().x();
   settings.gravity_y_m_s2 = dem.gravity_m_s2().y();
+  if (dem.has_prescribed_motion()) {
+    const rockcut::PrescribedMotion& m = dem.prescribed_motion();
+    PrescribedMotion motion;
+    motion.strain_rate_xx_per_s = m.strain_rate_xx_per_s();
+    motion.strain_rate_yy_per_s = m.strain_rate_yy_per_s();
+    motion.origin_x_m = m.origin_m().x();
+    motion.origin_y_m = m.origin_m().y();
+    motion.start_time_s = m.start_time_s();
+    if (m.has_end_time_s()) motion.end_time_s = m.end_time_s();
+    settings.prescribed_motion = motion;
+  }
   system_ = std::make_unique<DemSystem>(std::move(particles), settings);
 
   position_at_exchange_ = system_->particles().position;

@@ -84,3 +84,35 @@ TEST(Verlet, KineticEnergyOfKnownMotion) {
 
 }  // namespace
 }  // namespace rockcut::dem
+
+namespace rockcut::dem {
+namespace {
+
+TEST(PrescribedMotion, UniformCompressionScalesPositionsExactly) {
+  // v = eps_rate (x - origin): each step multiplies the offset by (1 + eps_rate dt) exactly as
+  // forward Euler on the field, so after n steps offset = x0 (1 + eps_rate dt)^n.
+  LatticeSpec spec;
+  spec.nx = 3;
+  spec.ny = 3;
+  spec.spacing_m = 0.01;
+  spec.radius_m = 0.001;
+  DemSettings settings;
+  PrescribedMotion m;
+  m.strain_rate_xx_per_s = -2.0;
+  m.strain_rate_yy_per_s = -1.0;
+  m.end_time_s = 0.01;  // 100 steps of 1e-4, then at rest
+  settings.prescribed_motion = m;
+  Particles p = make_lattice(spec);
+  const std::vector<double> x0 = p.position;
+  DemSystem s(std::move(p), settings);
+  s.set_external_force(std::vector<double>(18, 5.0));  // ignored: no dynamics
+  for (int k = 0; k < 150; ++k) s.step(1e-4);
+  for (std::size_t i = 0; i < 9; ++i) {
+    EXPECT_NEAR(s.particles().position[2 * i], x0[2 * i] * std::pow(1 - 2e-4, 100), 1e-15);
+    EXPECT_NEAR(s.particles().position[2 * i + 1], x0[2 * i + 1] * std::pow(1 - 1e-4, 100), 1e-15);
+  }
+  EXPECT_EQ(s.particles().velocity[2 * 8], 0.0);  // after end_time_s
+}
+
+}  // namespace
+}  // namespace rockcut::dem

@@ -1,0 +1,657 @@
+// bench_exchange: the cost of ONE coupling exchange as the coupler does it with the fluid module.
+//
+// The client (coupler side) sends kinematics -- "position" and "velocity_half", 2 * n doubles each --
+// and receives forces -- "force", 2 * n doubles -- for n particles, over
+//   inproc  server thread in the same ZeroMQ context,
+//   ipc     server process (forked before any context exists), socket in a private temp dir,
+//   tcp     server process on 127.0.0.1 and a free port,
+// in two encodings:
+//   raw     the project's wire::Message: Envelope in frame 0, one raw frame per array (add_array
+//           copies each array once; the receiver reads the frame in place). The client is
+//           wire::ModuleClient and the server wire::serve() with a ModuleHandler: the real code.
+//   packed  bench_packed.proto: the same data as packed `repeated double` fields in frame 0 only
+//           (fill the repeated fields, SerializeToArray into a zmq::message_t, ParseFromArray).
+//           Client and server loops are written here and wait the same way ModuleClient does.
+// Baselines: "memcpy" copies the same bytes once (what a perfect transport would cost) and "kernel"
+// is the server's force function alone (it is part of every exchange).
+//
+// Counters: particles = n; GB/s = (kinematics + force bytes = 48 n) / real time per exchange;
+// cpu_us = CPU time per exchange of both sides, all threads (ZeroMQ I/O threads included): the
+// client process's clock plus the server process's, which every reply carries.
+// Servers are started once in main() and stopped (Shutdown, then SIGKILL + waitpid if needed) before
+// exit, also on SIGINT/SIGTERM/SIGHUP; server processes also die with this one (PR_SET_PDEATHSIG).
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <chrono>
+#include <ctime>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <zmq.hpp>
+
+#include "bench_packed.pb.h"
+#include "wire/message.hpp"
+#include "wire/module_client.hpp"
+#include "wire/module_server.hpp"
+#include "wire/protocol.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+namespace wire = rockcut::wire;
+using rockcut::bench::PackedForces;
+using rockcut::bench::PackedKinematics;
+
+constexpr std::int64_t kSizes[] = {1'000, 10'000, 100'000, 1'000'000};
+// Defaults added to the command line unless it sets them (so they can be overridden): 0.2 s per
+// repetition, 5 repetitions shuffled among all benchmarks (a burst of load on a shared machine then
+// hits one repetition of several benchmarks, not all of one), the console showing only
+// mean/median/stddev/cv/min. About a minute in all on 2 cores.
+constexpr const char* kDefaultFlags[] = {
+    "--benchmark_min_time=0.2", "--benchmark_repetitions=5",
+    "--benchmark_enable_random_interleaving=true", "--benchmark_display_aggregates_only=true"};
+constexpr auto kExchangeTimeout = 60s;
+constexpr auto kStartTimeout = 10s;
+constexpr auto kStopTimeout = 2s;
+
+// ---------------------------------------------------------------------------------------------
+// The server's work: a cheap force from the kinematics, so every input value is read and every
+// output value depends on it (nothing can be optimised away).
+constexpr double kStiffness = 2.0;
+constexpr double kDamping = 0.5;
+
+void force_kernel(const double* __restrict x, const double* __restrict v, double* __restrict f,
+                  std::size_t m) {
+  for (std::size_t i = 0; i < m; ++i) f[i] = -kStiffness * x[i] - kDamping * v[i];
+}
+
+double process_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double position_value(std::size_t i) { return 1e-3 * static_cast<double>(i); }
+double velocity_value(std::size_t i) { return 0.25 - 1e-4 * static_cast<double>(i % 977); }
+
+/// Checks a received force array against the kernel (a few samples; the values are exact).
+void check_forces(std::span<const double> f, std::size_t values) {
+  if (f.size() != values) {
+    throw std::runtime_error("reply has " + std::to_string(f.size()) + " force values, expected " +
+                             std::to_string(values));
+  }
+  for (std::size_t i : {std::size_t{0}, values / 2, values - 1}) {
+    const double expected = -kStiffness * position_value(i) - kDamping * velocity_value(i);
+    if (f[i] != expected) throw std::runtime_error("wrong force value at " + std::to_string(i));
+  }
+}
+
+/// Appends `src` to a (cleared) repeated field: one reservation and one memcpy.
+void fill(google::protobuf::RepeatedField<double>* field, std::span<const double> src) {
+  const int count = static_cast<int>(src.size());
+  field->Reserve(field->size() + count);
+  std::memcpy(field->AddNAlreadyReserved(count), src.data(), src.size_bytes());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Servers
+
+class ForceHandler : public wire::ModuleHandler {
+ public:
+  wire::ModuleKind kind() const override { return wire::MODULE_KIND_FLUID; }
+  std::string name() const override { return "bench_exchange server"; }
+  std::string version() const override { return ROCKCUT_VERSION; }
+  std::vector<std::string> models() const override { return {"bench_force"}; }
+
+  void handle(const wire::Message& request, wire::Message& reply) override {
+    if (!request.envelope.has_fluid_step()) throw wire::ProtocolError("expected FluidStep");
+    const std::span<const double> x = request.array(wire::field::kPosition, 2);
+    const std::span<const double> v = request.array(wire::field::kVelocityHalf, 2);
+    if (x.size() != v.size()) throw wire::ProtocolError("position and velocity_half differ");
+    force_.resize(x.size());
+    force_kernel(x.data(), v.data(), force_.data(), x.size());
+    reply.add_array(wire::field::kForce, force_, 2);
+    (*reply.envelope.mutable_fluid_result()->mutable_scalars())["server_cpu_s"] = process_cpu_s();
+  }
+
+ private:
+  std::vector<double> force_;  // the module's own force array, sent from here
+};
+
+/// The packed-encoding server: a REP loop like wire::serve(). An empty request means "stop" (it is
+/// answered with an empty reply); a malformed one is answered with an empty reply.
+int serve_packed(zmq::context_t& context, const std::string& endpoint) {
+  zmq::socket_t socket(context, zmq::socket_type::rep);
+  socket.set(zmq::sockopt::linger, 0);
+  socket.bind(endpoint);
+  PackedKinematics request;
+  PackedForces reply;
+  std::vector<double> force;
+  for (;;) {
+    zmq::message_t in;
+    if (!socket.recv(in, zmq::recv_flags::none)) return 1;
+    if (in.size() == 0) {
+      socket.send(zmq::message_t(), zmq::send_flags::none);
+      return 0;
+    }
+    if (!request.ParseFromArray(in.data(), static_cast<int>(in.size())) ||
+        request.position_size() != request.velocity_half_size()) {
+      socket.send(zmq::message_t(), zmq::send_flags::none);
+      continue;
+    }
+    const std::size_t m = static_cast<std::size_t>(request.position_size());
+    force.resize(m);
+    force_kernel(request.position().data(), request.velocity_half().data(), force.data(), m);
+    reply.Clear();
+    fill(reply.mutable_force(), force);
+    reply.set_server_cpu_s(process_cpu_s());
+    zmq::message_t out(reply.ByteSizeLong());
+    reply.SerializeToArray(out.data(), static_cast<int>(out.size()));
+    socket.send(out, zmq::send_flags::none);
+  }
+}
+
+enum class Transport { inproc, ipc, tcp };
+enum class Encoding { raw, packed };
+
+const char* name_of(Transport t) {
+  switch (t) {
+    case Transport::inproc: return "inproc";
+    case Transport::ipc: return "ipc";
+    case Transport::tcp: return "tcp";
+  }
+  return "?";
+}
+const char* name_of(Encoding e) { return e == Encoding::raw ? "raw" : "packed"; }
+
+int run_server(zmq::context_t& context, Encoding encoding, const std::string& endpoint) {
+  if (encoding == Encoding::raw) {
+    ForceHandler handler;
+    return wire::serve(context, endpoint, handler);
+  }
+  return serve_packed(context, endpoint);
+}
+
+// Child processes, kept where the signal handler and atexit can reach them without allocating.
+constexpr int kMaxChildren = 8;
+pid_t g_children[kMaxChildren] = {};
+int g_child_count = 0;
+char g_ipc_dir[64] = {};
+char g_ipc_files[2][128] = {};
+
+void kill_children() {  // async-signal-safe
+  for (int i = 0; i < g_child_count; ++i) {
+    const pid_t pid = g_children[i];
+    if (pid <= 0) continue;
+    kill(pid, SIGKILL);
+    while (waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+    }
+    g_children[i] = 0;
+  }
+}
+
+void remove_ipc_dir() {  // async-signal-safe
+  if (g_ipc_dir[0] == '\0') return;
+  for (const char* f : g_ipc_files) {
+    if (f[0] != '\0') unlink(f);
+  }
+  rmdir(g_ipc_dir);
+  g_ipc_dir[0] = '\0';
+}
+
+void on_signal(int sig) {
+  kill_children();
+  remove_ipc_dir();
+  _exit(128 + sig);
+}
+
+void at_exit() {
+  kill_children();
+  remove_ipc_dir();
+}
+
+pid_t* child_slot(pid_t pid) {
+  for (int i = 0; i < g_child_count; ++i) {
+    if (g_children[i] == pid) return &g_children[i];
+  }
+  return nullptr;
+}
+
+/// Forks a server process. The child creates its own ZeroMQ context after the fork (the parent
+/// has none yet) and dies with the parent.
+pid_t fork_server(Encoding encoding, const std::string& endpoint) {
+  if (g_child_count == kMaxChildren) throw std::runtime_error("too many server processes");
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(3);
+    int code = 2;
+    try {
+      zmq::context_t context(1);
+      code = run_server(context, encoding, endpoint);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "bench_exchange server %s: %s\n", endpoint.c_str(), e.what());
+    }
+    _exit(code);  // no atexit handlers, no stdio flush of the parent's buffers
+  }
+  g_children[g_child_count++] = pid;
+  return pid;
+}
+
+/// Two free loopback ports (both probed before either is released, so they differ).
+std::vector<int> free_tcp_ports(int count) {
+  std::vector<int> fds, ports;
+  for (int i = 0; i < count; ++i) {
+    const int fd = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    addr.sin_port = 0;
+    socklen_t len = sizeof addr;
+    if (fd < 0 || bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 ||
+        getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
+      throw std::runtime_error(std::string("cannot find a free tcp port: ") + std::strerror(errno));
+    }
+    fds.push_back(fd);
+    ports.push_back(ntohs(addr.sin_port));
+  }
+  for (int fd : fds) close(fd);
+  return ports;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One server and the client connected to it.
+
+struct Link {
+  Transport transport;
+  Encoding encoding;
+  std::string endpoint;
+  pid_t pid = 0;       // server process (ipc, tcp)
+  std::thread thread;  // server thread (inproc)
+  std::string failure;  // why the server is gone, once known
+
+  std::unique_ptr<wire::ModuleClient> raw;  // Encoding::raw
+  wire::Message request, reply;
+  std::unique_ptr<zmq::socket_t> socket;    // Encoding::packed
+  PackedKinematics packed_request;
+  PackedForces packed_reply;
+
+  std::string label() const {
+    return std::string(name_of(transport)) + "/" + name_of(encoding) + " server at " + endpoint;
+  }
+
+  /// Why the server is gone, or nothing while it runs.
+  std::optional<std::string> dead() {
+    if (!failure.empty()) return failure;
+    if (pid > 0) {
+      int status = 0;
+      if (waitpid(pid, &status, WNOHANG) == pid) {
+        if (pid_t* slot = child_slot(pid)) *slot = 0;
+        pid = 0;
+        failure = WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                                      : "exited with " + std::to_string(WEXITSTATUS(status));
+        return failure;
+      }
+    }
+    return std::nullopt;
+  }
+
+  void connect(zmq::context_t& context) {
+    if (encoding == Encoding::raw) {
+      wire::ClientHooks hooks;
+      hooks.dead = [this] { return dead(); };
+      raw = std::make_unique<wire::ModuleClient>(context, label(), endpoint, kStartTimeout, hooks);
+      wire::Message hello, answer;
+      hello.envelope.mutable_hello()->set_protocol_version(wire::kProtocolVersion);
+      hello.envelope.mutable_hello()->set_expected_kind(wire::MODULE_KIND_FLUID);
+      raw->request(hello, answer);
+      if (!answer.envelope.has_hello_reply()) throw std::runtime_error(label() + ": no HelloReply");
+      raw->set_timeout(kExchangeTimeout);
+    } else {
+      socket = std::make_unique<zmq::socket_t>(context, zmq::socket_type::req);
+      socket->set(zmq::sockopt::linger, 0);
+      socket->connect(endpoint);
+      const std::vector<double> one = {position_value(0), position_value(1)};
+      const std::vector<double> one_v = {velocity_value(0), velocity_value(1)};
+      check_forces(exchange_packed(one, one_v, kStartTimeout), 2);
+    }
+  }
+
+  /// Waits for the reply like wire::ModuleClient::receive: poll in 50 ms slices, watch the server.
+  void wait_readable(std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    for (;;) {
+      zmq::pollitem_t item{socket->handle(), 0, ZMQ_POLLIN, 0};
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+          deadline - std::chrono::steady_clock::now());
+      zmq::poll(&item, 1, std::clamp(left, 0ms, 50ms));
+      if (item.revents & ZMQ_POLLIN) return;
+      if (auto why = dead()) throw std::runtime_error(label() + ": the process " + *why);
+      if (std::chrono::steady_clock::now() >= deadline) {
+        throw std::runtime_error(label() + ": no reply within the timeout");
+      }
+    }
+  }
+
+  /// One exchange in the raw encoding, exactly as the coupler does it; returns the forces in place.
+  std::span<const double> exchange_raw(std::span<const double> x, std::span<const double> v) {
+    request.clear();
+    wire::FluidStep* step = request.envelope.mutable_fluid_step();
+    step->set_dt_s(1e-6);
+    step->set_time_s(1.0);
+    request.add_array(wire::field::kPosition, x, 2);
+    request.add_array(wire::field::kVelocityHalf, v, 2);
+    raw->request(request, reply);
+    if (!reply.envelope.has_fluid_result()) throw std::runtime_error(label() + ": no FluidResult");
+    return reply.array(wire::field::kForce, 2);
+  }
+
+  /// One exchange in the packed encoding; returns the forces (in the parsed message).
+  std::span<const double> exchange_packed(std::span<const double> x, std::span<const double> v,
+                                          std::chrono::milliseconds timeout = kExchangeTimeout) {
+    packed_request.Clear();
+    packed_request.set_dt_s(1e-6);
+    packed_request.set_time_s(1.0);
+    fill(packed_request.mutable_position(), x);
+    fill(packed_request.mutable_velocity_half(), v);
+    zmq::message_t out(packed_request.ByteSizeLong());
+    packed_request.SerializeToArray(out.data(), static_cast<int>(out.size()));
+    socket->send(out, zmq::send_flags::none);
+    wait_readable(timeout);
+    zmq::message_t in;
+    if (!socket->recv(in, zmq::recv_flags::none)) throw std::runtime_error("receive interrupted");
+    if (in.size() == 0 || !packed_reply.ParseFromArray(in.data(), static_cast<int>(in.size()))) {
+      throw std::runtime_error(label() + ": malformed reply");
+    }
+    return {packed_reply.force().data(), static_cast<std::size_t>(packed_reply.force_size())};
+  }
+
+  /// The server process's CPU clock as stamped in the last reply [s].
+  double server_cpu_s() const {
+    if (encoding == Encoding::packed) return packed_reply.server_cpu_s();
+    const auto& scalars = reply.envelope.fluid_result().scalars();
+    const auto it = scalars.find("server_cpu_s");
+    return it == scalars.end() ? 0.0 : it->second;
+  }
+
+  std::span<const double> exchange(std::span<const double> x, std::span<const double> v) {
+    return encoding == Encoding::raw ? exchange_raw(x, v) : exchange_packed(x, v);
+  }
+
+  /// Asks the server to stop; closes the client. Never throws.
+  void stop() {
+    try {
+      if (raw) {
+        wire::Message bye, answer;
+        bye.envelope.mutable_shutdown();
+        raw->set_timeout(std::chrono::duration_cast<std::chrono::milliseconds>(kStopTimeout));
+        raw->request(bye, answer);
+      } else if (socket) {
+        socket->send(zmq::message_t(), zmq::send_flags::none);
+        wait_readable(std::chrono::duration_cast<std::chrono::milliseconds>(kStopTimeout));
+        zmq::message_t in;
+        (void)socket->recv(in, zmq::recv_flags::none);
+      }
+    } catch (const std::exception&) {
+      // The server may already be gone, or its answer lost (linger 0): it is killed below.
+    }
+    raw.reset();
+    socket.reset();
+  }
+
+  /// Reaps the server process (waits up to kStopTimeout, then SIGKILL).
+  void reap() {
+    if (pid <= 0) return;
+    const auto deadline = std::chrono::steady_clock::now() + kStopTimeout;
+    int status = 0;
+    pid_t r = 0;
+    while ((r = waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(10ms);
+    }
+    if (r == 0) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+    }
+    if (pid_t* slot = child_slot(pid)) *slot = 0;
+    pid = 0;
+  }
+};
+
+std::vector<std::unique_ptr<Link>> g_links;
+
+Link* find_link(Transport t, Encoding e) {
+  for (auto& l : g_links) {
+    if (l->transport == t && l->encoding == e) return l.get();
+  }
+  return nullptr;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Benchmarks
+
+struct Kinematics {
+  std::vector<double> x, v;
+  explicit Kinematics(std::size_t n) : x(2 * n), v(2 * n) {
+    for (std::size_t i = 0; i < 2 * n; ++i) {
+      x[i] = position_value(i);
+      v[i] = velocity_value(i);
+    }
+  }
+};
+
+void set_counters(benchmark::State& state, std::size_t n) {
+  const double bytes = 3.0 * 2.0 * static_cast<double>(n) * sizeof(double);  // 2 out, 1 back
+  state.counters["particles"] = static_cast<double>(n);
+  state.counters["GB/s"] =
+      benchmark::Counter(bytes / 1e9, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_Exchange(benchmark::State& state, Transport transport, Encoding encoding) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  Link* link = find_link(transport, encoding);
+  if (link == nullptr || !(link->raw || link->socket)) {
+    state.SkipWithError("server not running");
+    return;
+  }
+  const Kinematics k(n);
+  try {
+    check_forces(link->exchange(k.x, k.v), 2 * n);  // warm-up, and proof the data arrives
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  const double client_cpu0 = process_cpu_s();
+  const double server_cpu0 = link->server_cpu_s();
+  std::span<const double> f;
+  for (auto _ : state) {
+    try {
+      f = link->exchange(k.x, k.v);
+    } catch (const std::exception& e) {
+      state.SkipWithError(e.what());
+      break;
+    }
+    benchmark::DoNotOptimize(f.data());
+  }
+  double cpu_s = process_cpu_s() - client_cpu0;
+  // An inproc server is a thread of this process: its time is in the client's clock already.
+  if (transport != Transport::inproc) cpu_s += link->server_cpu_s() - server_cpu0;
+  state.counters["cpu_us"] = benchmark::Counter(1e6 * cpu_s, benchmark::Counter::kAvgIterations);
+  try {
+    if (!f.empty()) check_forces(f, 2 * n);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+  }
+  set_counters(state, n);
+}
+
+/// What a perfect transport would cost: the same bytes copied once, into buffers already mapped.
+void BM_Memcpy(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const Kinematics k(n);
+  std::vector<double> force(2 * n, 1.0);
+  std::vector<double> x_dst(2 * n, 0.0), v_dst(2 * n, 0.0), f_dst(2 * n, 0.0);
+  for (auto _ : state) {
+    std::memcpy(x_dst.data(), k.x.data(), 2 * n * sizeof(double));
+    std::memcpy(v_dst.data(), k.v.data(), 2 * n * sizeof(double));
+    std::memcpy(f_dst.data(), force.data(), 2 * n * sizeof(double));
+    benchmark::ClobberMemory();
+  }
+  benchmark::DoNotOptimize(x_dst.data());
+  benchmark::DoNotOptimize(v_dst.data());
+  benchmark::DoNotOptimize(f_dst.data());
+  set_counters(state, n);
+}
+
+/// The server's force function alone (one pass: read 2 arrays, write 1); every exchange runs it.
+void BM_Kernel(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const Kinematics k(n);
+  std::vector<double> force(2 * n, 0.0);
+  for (auto _ : state) {
+    force_kernel(k.x.data(), k.v.data(), force.data(), 2 * n);
+    benchmark::ClobberMemory();
+  }
+  check_forces(force, 2 * n);
+  set_counters(state, n);
+}
+
+template <typename B>
+void configure(B* b) {
+  for (std::int64_t n : kSizes) b->Arg(n);
+  b->UseRealTime()->Unit(benchmark::kMicrosecond);
+  // The fastest repetition: on a shared machine the least disturbed one (noise only adds time).
+  b->ComputeStatistics("min", [](const std::vector<double>& v) {
+    return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+  });
+}
+
+void start_servers() {
+  // Processes first, while this process has no ZeroMQ context.
+  std::strcpy(g_ipc_dir, "/tmp/rockcut-bench-XXXXXX");
+  if (mkdtemp(g_ipc_dir) == nullptr) {
+    g_ipc_dir[0] = '\0';
+    throw std::runtime_error(std::string("mkdtemp: ") + std::strerror(errno));
+  }
+  const std::vector<int> ports = free_tcp_ports(2);
+  int port_index = 0;
+  for (Transport t : {Transport::ipc, Transport::tcp}) {
+    for (Encoding e : {Encoding::raw, Encoding::packed}) {
+      auto link = std::make_unique<Link>();
+      link->transport = t;
+      link->encoding = e;
+      if (t == Transport::ipc) {
+        char* file = g_ipc_files[e == Encoding::raw ? 0 : 1];
+        std::snprintf(file, sizeof g_ipc_files[0], "%s/%s.sock", g_ipc_dir, name_of(e));
+        link->endpoint = std::string("ipc://") + file;
+      } else {
+        link->endpoint = "tcp://127.0.0.1:" + std::to_string(ports[port_index++]);
+      }
+      link->pid = fork_server(e, link->endpoint);
+      g_links.push_back(std::move(link));
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> defaults;
+  for (const char* flag : kDefaultFlags) {
+    const std::string_view name(flag, std::strchr(flag, '=') - flag);
+    bool given = false;
+    for (int i = 1; i < argc; ++i) given |= std::string_view(argv[i]).starts_with(name);
+    if (!given) defaults.emplace_back(flag);
+  }
+  std::vector<char*> args(argv, argv + argc);
+  for (std::string& d : defaults) args.push_back(d.data());
+  int arg_count = static_cast<int>(args.size());
+  args.push_back(nullptr);
+  benchmark::Initialize(&arg_count, args.data());
+  if (benchmark::ReportUnrecognizedArguments(arg_count, args.data())) return 1;
+
+  try {
+    start_servers();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_exchange: %s\n", e.what());
+    at_exit();
+    return 1;
+  }
+  std::atexit(at_exit);
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+
+  int code = 0;
+  {
+    zmq::context_t context(1);
+    for (Encoding e : {Encoding::raw, Encoding::packed}) {
+      auto link = std::make_unique<Link>();
+      link->transport = Transport::inproc;
+      link->encoding = e;
+      link->endpoint = std::string("inproc://bench-exchange-") + name_of(e);
+      link->thread = std::thread([&context, e, endpoint = link->endpoint] {
+        try {
+          run_server(context, e, endpoint);
+        } catch (const std::exception&) {
+          // context.shutdown() at exit, or a bind error the client then reports.
+        }
+      });
+      g_links.insert(g_links.begin() + (e == Encoding::raw ? 0 : 1), std::move(link));
+    }
+    for (auto& link : g_links) {
+      try {
+        link->connect(context);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_exchange: %s: %s\n", link->label().c_str(), e.what());
+        link->stop();
+        code = 1;
+      }
+    }
+
+    if (code == 0) {
+      configure(benchmark::RegisterBenchmark("baseline/memcpy", BM_Memcpy));
+      configure(benchmark::RegisterBenchmark("baseline/kernel", BM_Kernel));
+      for (Transport t : {Transport::inproc, Transport::ipc, Transport::tcp}) {
+        for (Encoding e : {Encoding::raw, Encoding::packed}) {
+          const std::string name = std::string("exchange/") + name_of(t) + "/" + name_of(e);
+          configure(benchmark::RegisterBenchmark(name.c_str(), BM_Exchange, t, e));
+        }
+      }
+      benchmark::RunSpecifiedBenchmarks();
+    }
+
+    for (auto& link : g_links) link->stop();
+    context.shutdown();  // releases an inproc server that did not get the Shutdown
+    for (auto& link : g_links) {
+      if (link->thread.joinable()) link->thread.join();
+      link->reap();
+    }
+    g_links.clear();
+  }
+  benchmark::Shutdown();
+  kill_children();
+  remove_ipc_dir();
+  return code;
+}

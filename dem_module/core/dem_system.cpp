@@ -1,26 +1,110 @@
 #include "core/dem_system.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace rockcut::dem {
 
-DemSystem::DemSystem(Particles particles, const DemSettings& settings)
-    : particles_(std::move(particles)), settings_(settings) {
+namespace {
+// Default Verlet skin as a fraction of the smallest radius: large enough that a bonded specimen
+// rebuilds rarely, small enough that the candidate list stays short.
+constexpr double kDefaultSkinFraction = 0.2;
+
+int thread_id() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+// The static share [begin, end) of `count` items for thread t of `threads`.
+std::pair<std::size_t, std::size_t> share(std::size_t count, int t, int threads) {
+  const std::size_t per = count / threads, extra = count % threads;
+  const std::size_t begin = t * per + std::min<std::size_t>(t, extra);
+  return {begin, begin + per + (static_cast<std::size_t>(t) < extra ? 1 : 0)};
+}
+}  // namespace
+
+DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet bonds,
+                     WallSet walls)
+    : particles_(std::move(particles)),
+      settings_(settings),
+      bonds_(std::move(bonds)),
+      walls_(std::move(walls)) {
+  if (settings_.threads < 1) settings_.threads = 1;
+  has_pairs_ = settings_.contact.normal_stiffness_n_m > 0 || bonds_.size() > 0 || !walls_.empty();
+  if (settings_.skin_m <= 0) {
+    double r_min = 1e300;
+    for (double r : particles_.radius) r_min = std::min(r_min, r);
+    settings_.skin_m = particles_.size() ? kDefaultSkinFraction * r_min : 0.0;
+  }
+  if (has_pairs_) rebuild_neighbours();
   compute_internal_forces();
-  add_external_forces();
+  finish_forces();
+}
+
+void DemSystem::rebuild_neighbours() {
+  bonds_.refresh_partners(particles_.size());
+  if (settings_.contact.normal_stiffness_n_m > 0) {
+    contacts_.rebuild(particles_, bonds_, settings_.skin_m, grid_);
+  }
+  if (!walls_.empty()) walls_.rebuild(particles_, settings_.skin_m);
+  max_drift2_m2_ = 0.0;
+  ++rebuilds_;
 }
 
 void DemSystem::half_kick(double dt) {
   const std::size_t n = particles_.size();
   double* v = particles_.velocity.data();
+  double* w = particles_.angular_velocity.data();
   const double* f = particles_.force.data();
+  const double* q = particles_.torque.data();
   const double* inv_m = particles_.inv_mass.data();
-  const double half_dt = 0.5 * dt;
+  const double* inv_i = particles_.inv_inertia.data();
+  const double h = 0.5 * dt;
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1)
   for (std::size_t i = 0; i < n; ++i) {
-    v[2 * i] += half_dt * f[2 * i] * inv_m[i];
-    v[2 * i + 1] += half_dt * f[2 * i + 1] * inv_m[i];
+    v[2 * i] += h * f[2 * i] * inv_m[i];
+    v[2 * i + 1] += h * f[2 * i + 1] * inv_m[i];
+    w[i] += h * q[i] * inv_i[i];
   }
+}
+
+void DemSystem::drift(double dt) {
+  const std::size_t n = particles_.size();
+  double* x = particles_.position.data();
+  const double* v = particles_.velocity.data();
+  const double* w = particles_.angular_velocity.data();
+  const double* fe = particles_.external_force.data();
+  const double* inv_m = particles_.inv_mass.data();
+  const double* fd = damping_force_.empty() ? nullptr : damping_force_.data();
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  double vmax2 = 0.0, work = 0.0, damping = 0.0;
+  // Verlet moves x by v^{n+1/2} dt under the mean of F^n and F^{n+1}: each force's work over the
+  // drift is the trapezoid 1/2 (F^n + F^{n+1}) . dx. The F^n halves are added here, the F^{n+1}
+  // halves in finish_forces().
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1) \
+    reduction(max : vmax2) reduction(+ : work, damping)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double vx = v[2 * i], vy = v[2 * i + 1];
+    x[2 * i] += dt * vx;
+    x[2 * i + 1] += dt * vy;
+    vmax2 = std::max(vmax2, vx * vx + vy * vy);
+    work += ((fe[2 * i] + gx / inv_m[i]) * vx + (fe[2 * i + 1] + gy / inv_m[i]) * vy) * 0.5 * dt;
+    if (fd) damping -= (fd[3 * i] * vx + fd[3 * i + 1] * vy + fd[3 * i + 2] * w[i]) * 0.5 * dt;
+  }
+  ledger_.external_work_j += work;
+  ledger_.damping_j += damping;
+  // A bound on how far any disc moved since the rebuild: sum of the largest step lengths.
+  const double moved = std::sqrt(max_drift2_m2_) + std::sqrt(vmax2) * dt;
+  max_drift2_m2_ = moved * moved;
+  walls_.move(dt);
 }
 
 void DemSystem::set_prescribed_velocity(double t) {
@@ -37,41 +121,107 @@ void DemSystem::set_prescribed_velocity(double t) {
   }
 }
 
-void DemSystem::drift(double dt) {
-  const std::size_t m = particles_.position.size();
-  double* x = particles_.position.data();
-  const double* v = particles_.velocity.data();
-  for (std::size_t k = 0; k < m; ++k) x[k] += dt * v[k];
-}
-
 void DemSystem::compute_internal_forces() {
   internal_forces_current_ = true;
   const std::size_t n = particles_.size();
+  if (has_pairs_ && std::sqrt(max_drift2_m2_) + walls_.displacement_since_rebuild() >
+                        0.5 * settings_.skin_m) {
+    rebuild_neighbours();
+  }
   double* f = particles_.force.data();
+  double* q = particles_.torque.data();
   const double* inv_m = particles_.inv_mass.data();
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  const int threads = settings_.threads;
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::size_t i = 0; i < n; ++i) {
-    f[2 * i] = settings_.gravity_x_m_s2 / inv_m[i];
-    f[2 * i + 1] = settings_.gravity_y_m_s2 / inv_m[i];
+    f[2 * i] = gx / inv_m[i];
+    f[2 * i + 1] = gy / inv_m[i];
+    q[i] = 0.0;
+  }
+  if (!has_pairs_) return;
+
+  buffers_.prepare(threads, n);
+  bool any_broken = false;
+  double friction = 0.0;
+  const double dt = dt_last_;
+#pragma omp parallel num_threads(threads) if (threads > 1) reduction(|| : any_broken) \
+    reduction(+ : friction)
+  {
+    const int t = threads > 1 ? thread_id() : 0;
+    const ForceView out = buffers_.view(t, particles_);
+    const auto [b0, b1] = share(bonds_.size(), t, threads);
+    bonds_.compute(particles_, dt, b0, b1, out, any_broken);
+    const auto [c0, c1] = share(contacts_.size(), t, threads);
+    if (settings_.contact.normal_stiffness_n_m > 0) {
+      contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, friction);
+    }
+  }
+  buffers_.reduce(particles_);
+  ledger_.friction_j += friction;
+  if (!walls_.empty()) {
+    walls_.compute(particles_, settings_.contact, dt, buffers_.view(0, particles_),
+                   ledger_.boundary_work_j, ledger_.friction_j);
+  }
+  if (any_broken) {
+    freed_pairs_.clear();
+    bonds_.remove_broken(particles_, time_s_, breaks_, freed_pairs_, ledger_);
+    if (settings_.contact.normal_stiffness_n_m > 0) contacts_.add_pairs(freed_pairs_);
   }
 }
 
-void DemSystem::add_external_forces() {
-  const std::size_t m = particles_.force.size();
+void DemSystem::finish_forces() {
+  const std::size_t n = particles_.size();
   double* f = particles_.force.data();
+  double* q = particles_.torque.data();
   const double* fe = particles_.external_force.data();
-  for (std::size_t k = 0; k < m; ++k) f[k] += fe[k];
+  const double* v = particles_.velocity.data();
+  const double* w = particles_.angular_velocity.data();
+  const double* inv_m = particles_.inv_mass.data();
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  const double alpha = settings_.local_damping;
+  if (alpha > 0) damping_force_.resize(3 * n);
+  double* fd = damping_force_.data();
+  const double h = 0.5 * dt_last_;  // the F^{n+1} half of the trapezoid, see drift()
+  double damping = 0.0, work = 0.0;
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) \
+    if (settings_.threads > 1) reduction(+ : damping, work)
+  for (std::size_t i = 0; i < n; ++i) {
+    double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
+    const double vx = v[2 * i], vy = v[2 * i + 1];
+    work += ((fe[2 * i] + gx / inv_m[i]) * vx + (fe[2 * i + 1] + gy / inv_m[i]) * vy) * h;
+    if (alpha > 0) {
+      // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
+      const double dx = -alpha * std::abs(fx) * ((vx > 0) - (vx < 0));
+      const double dy = -alpha * std::abs(fy) * ((vy > 0) - (vy < 0));
+      const double dq = -alpha * std::abs(tq) * ((w[i] > 0) - (w[i] < 0));
+      damping -= (dx * vx + dy * vy + dq * w[i]) * h;
+      fd[3 * i] = dx;
+      fd[3 * i + 1] = dy;
+      fd[3 * i + 2] = dq;
+      fx += dx;
+      fy += dy;
+      tq += dq;
+    }
+    f[2 * i] = fx;
+    f[2 * i + 1] = fy;
+    q[i] = tq;
+  }
+  ledger_.damping_j += damping;
+  ledger_.external_work_j += work;
 }
 
 void DemSystem::step(double dt) {
   begin_step(dt);
   compute_internal_forces();
-  add_external_forces();
+  finish_forces();
   if (!settings_.prescribed_motion) half_kick(dt);
   in_split_step_ = false;
 }
 
 void DemSystem::begin_step(double dt) {
   if (in_split_step_) throw std::logic_error("begin_step inside a split step");
+  dt_last_ = dt;
   if (settings_.prescribed_motion) {
     set_prescribed_velocity(time_s_ + 0.5 * dt);  // v^{n+1/2} of the field
   } else {
@@ -100,7 +250,7 @@ void DemSystem::set_external_force(std::span<const double> external) {
   // At rest (t = 0) a^n is re-evaluated from scratch; inside a split step the internal forces at
   // x^{n+1} may already have been computed while the fluid worked.
   if (!in_split_step_ || !internal_forces_current_) compute_internal_forces();
-  add_external_forces();
+  finish_forces();
 }
 
 double DemSystem::kinetic_energy() const {
@@ -109,9 +259,15 @@ double DemSystem::kinetic_energy() const {
   for (std::size_t i = 0; i < n; ++i) {
     const double vx = particles_.velocity[2 * i];
     const double vy = particles_.velocity[2 * i + 1];
-    e += 0.5 * (vx * vx + vy * vy) / particles_.inv_mass[i];
+    const double w = particles_.angular_velocity[i];
+    e += 0.5 * (vx * vx + vy * vy) / particles_.inv_mass[i] +
+         0.5 * w * w / particles_.inv_inertia[i];
   }
   return e;
+}
+
+double DemSystem::strain_energy() const {
+  return bonds_.strain_energy() + contacts_.strain_energy(particles_, settings_.contact);
 }
 
 }  // namespace rockcut::dem

@@ -1,12 +1,20 @@
-// The DEM state and its time integration: velocity Verlet, paper eqs. 5-8 (eq. 8's v^{i+1/2} is
-// v^{n+1/2}), split in two halves so the fluid can act between them (DESIGN section 3).
+// The DEM state and its time integration: velocity Verlet with rotation, paper eqs. 5-8 (eq. 8's
+// v^{i+1/2} is v^{n+1/2}), split in two halves so the fluid can act between them (DESIGN section 3).
+// Forces at x^{n+1} use v^{n+1/2} (the paper's remark under eq. 8).
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
+#include "core/bonds.hpp"
+#include "core/cell_grid.hpp"
+#include "core/contact_list.hpp"
+#include "core/energy.hpp"
+#include "core/force_buffers.hpp"
 #include "core/particles.hpp"
+#include "core/walls.hpp"
 
 namespace rockcut::dem {
 
@@ -23,12 +31,17 @@ struct PrescribedMotion {
 struct DemSettings {
   double gravity_x_m_s2 = 0.0;
   double gravity_y_m_s2 = 0.0;
+  ContactLaw contact;          ///< all-zero stiffness: discs pass through each other (no contacts)
+  double local_damping = 0.0;  ///< alpha_d of eq. 10 (Potyondy & Cundall 2004)
+  double skin_m = 0.0;         ///< Verlet skin of the neighbour list; 0: chosen from the radii
+  int threads = 1;             ///< OpenMP threads of the pair loops
   std::optional<PrescribedMotion> prescribed_motion;
 };
 
 class DemSystem {
  public:
-  DemSystem(Particles particles, const DemSettings& settings);
+  DemSystem(Particles particles, const DemSettings& settings, BondSet bonds = {},
+            WallSet walls = {});
 
   /// One full step of dt [s]: half kick, drift, forces at x^{n+1}, half kick.
   void step(double dt);
@@ -44,27 +57,50 @@ class DemSystem {
   void set_external_force(std::span<const double> external);
 
   const Particles& particles() const { return particles_; }
+  const BondSet& bonds() const { return bonds_; }
+  const WallSet& walls() const { return walls_; }
+  const ContactList& contacts() const { return contacts_; }
+  const std::vector<BondBreak>& breaks() const { return breaks_; }
+  const EnergyLedger& ledger() const { return ledger_; }
   double time_s() const { return time_s_; }
   std::uint64_t step_count() const { return steps_; }
   bool in_split_step() const { return in_split_step_; }
   bool internal_forces_current() const { return internal_forces_current_; }
+  std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
 
-  /// Translational kinetic energy [J/m].
+  /// Kinetic energy, translation and rotation [J/m].
   double kinetic_energy() const;
+  /// Elastic energy in bonds and contacts [J/m].
+  double strain_energy() const;
 
  private:
   void half_kick(double dt);
+  void drift(double dt);
   /// Prescribed motion: the velocity of the field at the mid-step time t (replaces the kicks).
   void set_prescribed_velocity(double t);
-  void drift(double dt);
-  void add_external_forces();
+  /// total force = internal + external, then local damping (eq. 10); accumulates work terms.
+  void finish_forces();
+  void rebuild_neighbours();
 
   Particles particles_;
   DemSettings settings_;
+  BondSet bonds_;
+  WallSet walls_;
+  ContactList contacts_;
+  CellGrid grid_;
+  ForceBuffers buffers_;
+  EnergyLedger ledger_;
+  std::vector<BondBreak> breaks_;
+  std::vector<std::uint32_t> freed_pairs_;
+  std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
+  double max_drift2_m2_ = 0.0;  ///< largest squared displacement since the last rebuild
+  double dt_last_ = 0.0;
   double time_s_ = 0.0;
   std::uint64_t steps_ = 0;
+  std::uint64_t rebuilds_ = 0;
   bool in_split_step_ = false;
   bool internal_forces_current_ = false;  // force holds the internal forces at x^{n+1}
+  bool has_pairs_ = false;                // any contact law, bonds or walls at all
 };
 
 }  // namespace rockcut::dem

@@ -1,0 +1,163 @@
+#include "core/bonds.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/cell_grid.hpp"
+
+namespace rockcut::dem {
+
+BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tolerance_m,
+                         CellGrid& grid) {
+  BondSet b;
+  b.law_ = law;
+  double r_max = 0.0;
+  for (double r : p.radius) r_max = std::max(r_max, r);
+  grid.build(p.position, 2.0 * r_max + gap_tolerance_m);
+  const double* x = p.position.data();
+  grid.for_each_near_pair([&](std::uint32_t i, std::uint32_t j) {
+    const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
+    const double dist = std::sqrt(dx * dx + dy * dy);
+    if (dist - p.radius[i] - p.radius[j] <= gap_tolerance_m) {
+      b.i_.push_back(std::min(i, j));
+      b.j_.push_back(std::max(i, j));
+      b.rest_length_.push_back(dist);
+    }
+  });
+  // Bonds in particle order: the force loop then walks memory nearly sequentially.
+  std::vector<std::size_t> order(b.i_.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
+    return b.i_[a] != b.i_[c] ? b.i_[a] < b.i_[c] : b.j_[a] < b.j_[c];
+  });
+  auto permute = [&](auto& v) {
+    auto copy = v;
+    for (std::size_t k = 0; k < order.size(); ++k) v[k] = copy[order[k]];
+  };
+  permute(b.i_);
+  permute(b.j_);
+  permute(b.rest_length_);
+  b.shear_force_.assign(b.i_.size(), 0.0);
+  b.normal_force_.assign(b.i_.size(), 0.0);
+  b.broken_.assign(b.i_.size(), 0);
+  b.refresh_partners(p.size());
+  return b;
+}
+
+void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::size_t end,
+                      ForceView out, bool& any_broken) {
+  const double* x = p.position.data();
+  const double* v = p.velocity.data();
+  const double* w = p.angular_velocity.data();
+  const double* r = p.radius.data();
+  const double kn = law_.normal_stiffness_n_m, ks = law_.shear_stiffness_n_m;
+  const double tn = law_.tensile_strength_n, ts = law_.shear_strength_n;
+  bool broke = false;
+  for (std::size_t k = begin; k < end; ++k) {
+    const std::uint32_t i = i_[k], j = j_[k];
+    const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
+    const double len = std::sqrt(dx * dx + dy * dy);
+    const double nx = dx / len, ny = dy / len;
+    const double tx = -ny, ty = nx;
+    const double fn = kn * (rest_length_[k] - len);  // compression positive
+    // Tangential velocity of j's contact point relative to i's, rotation included.
+    const double vt = (v[2 * j] - v[2 * i]) * tx + (v[2 * j + 1] - v[2 * i + 1]) * ty -
+                      w[i] * r[i] - w[j] * r[j];
+    const double fs = shear_force_[k] - ks * vt * dt;
+    // Perfectly brittle: exceeding a strength breaks the bond in this evaluation. When both are
+    // exceeded, the mode is the one exceeded by the larger fraction.
+    const double tension_ratio = -fn / tn, shear_ratio = std::abs(fs) / ts;
+    if (tension_ratio > 1.0 || shear_ratio > 1.0) {
+      broken_[k] = 1 + static_cast<std::uint8_t>(tension_ratio >= shear_ratio ? BreakMode::tensile
+                                                                               : BreakMode::shear);
+      normal_force_[k] = fn;
+      shear_force_[k] = fs;
+      broke = true;
+      continue;
+    }
+    shear_force_[k] = fs;
+    normal_force_[k] = fn;
+    const double fx = fn * nx + fs * tx, fy = fn * ny + fs * ty;  // on j
+    out.force[2 * i] -= fx;
+    out.force[2 * i + 1] -= fy;
+    out.force[2 * j] += fx;
+    out.force[2 * j + 1] += fy;
+    out.torque[i] -= fs * r[i];
+    out.torque[j] -= fs * r[j];
+  }
+  if (broke) any_broken = true;
+}
+
+void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondBreak>& breaks,
+                            std::vector<std::uint32_t>& freed_pairs, EnergyLedger& ledger) {
+  std::size_t keep = 0;
+  for (std::size_t k = 0; k < i_.size(); ++k) {
+    if (broken_[k]) {
+      const std::uint32_t i = i_[k], j = j_[k];
+      const double fn = normal_force_[k], fs = shear_force_[k];
+      ledger.broken_bond_j += 0.5 * fn * fn / law_.normal_stiffness_n_m +
+                              0.5 * fs * fs / law_.shear_stiffness_n_m;
+      breaks.push_back({static_cast<BreakMode>(broken_[k] - 1), time_s,
+                        0.5 * (p.position[2 * i] + p.position[2 * j]),
+                        0.5 * (p.position[2 * i + 1] + p.position[2 * j + 1]), i, j});
+      freed_pairs.push_back(i);
+      freed_pairs.push_back(j);
+      continue;
+    }
+    // Stable compaction keeps the particle order of the list.
+    i_[keep] = i_[k];
+    j_[keep] = j_[k];
+    rest_length_[keep] = rest_length_[k];
+    shear_force_[keep] = shear_force_[k];
+    normal_force_[keep] = normal_force_[k];
+    broken_[keep] = 0;
+    ++keep;
+  }
+  i_.resize(keep);
+  j_.resize(keep);
+  rest_length_.resize(keep);
+  shear_force_.resize(keep);
+  normal_force_.resize(keep);
+  broken_.resize(keep);
+}
+
+double BondSet::strain_energy() const {
+  double e = 0.0;
+  for (std::size_t k = 0; k < i_.size(); ++k) {
+    e += 0.5 * normal_force_[k] * normal_force_[k] / law_.normal_stiffness_n_m +
+         0.5 * shear_force_[k] * shear_force_[k] / law_.shear_stiffness_n_m;
+  }
+  return e;
+}
+
+void BondSet::count_per_particle(std::size_t n, std::vector<std::uint32_t>& count) const {
+  count.assign(n, 0);
+  for (std::size_t k = 0; k < i_.size(); ++k) {
+    ++count[i_[k]];
+    ++count[j_[k]];
+  }
+}
+
+void BondSet::refresh_partners(std::size_t n) {
+  partner_start_.assign(n + 1, 0);
+  for (std::size_t k = 0; k < i_.size(); ++k) {
+    ++partner_start_[i_[k] + 1];
+    ++partner_start_[j_[k] + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) partner_start_[i + 1] += partner_start_[i];
+  partner_.resize(partner_start_[n]);
+  std::vector<std::uint32_t> fill(partner_start_.begin(), partner_start_.end() - 1);
+  for (std::size_t k = 0; k < i_.size(); ++k) {
+    partner_[fill[i_[k]]++] = j_[k];
+    partner_[fill[j_[k]]++] = i_[k];
+  }
+}
+
+bool BondSet::bonded(std::uint32_t i, std::uint32_t j) const {
+  for (std::uint32_t k = partner_start_[i]; k < partner_start_[i + 1]; ++k) {
+    if (partner_[k] == j) return true;
+  }
+  return false;
+}
+
+}  // namespace rockcut::dem

@@ -1,0 +1,62 @@
+// Bonds between neighbouring discs (paper section 3.1, figure 4; DESIGN section 4): linear elastic
+// and perfectly brittle, in structure-of-arrays form. The list changes only when bonds break.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/energy.hpp"
+#include "core/force_buffers.hpp"
+#include "core/interaction_law.hpp"
+#include "core/particles.hpp"
+
+namespace rockcut::dem {
+
+class CellGrid;
+
+class BondSet {
+ public:
+  BondSet() = default;
+  /// Bonds every pair whose surface gap is at most `gap_tolerance_m`, with rest length the current
+  /// distance (so the specimen starts unstressed).
+  static BondSet install(const Particles& p, const BondLaw& law, double gap_tolerance_m,
+                         CellGrid& grid);
+
+  std::size_t size() const { return i_.size(); }
+  const BondLaw& law() const { return law_; }
+
+  /// Adds the bond forces at the current positions (and velocities, for the incremental shear) into
+  /// `out` for bonds [begin, end). A bond whose strength is exceeded breaks now and carries no
+  /// force: it is flagged, and remove_broken() records it.
+  void compute(const Particles& p, double dt, std::size_t begin, std::size_t end, ForceView out,
+               bool& any_broken);
+  /// Removes the flagged bonds, appending their breaks (and the pairs, which may now collide) to
+  /// the given lists, and their elastic energy to the ledger.
+  void remove_broken(const Particles& p, double time_s, std::vector<BondBreak>& breaks,
+                     std::vector<std::uint32_t>& freed_pairs, EnergyLedger& ledger);
+
+  /// Elastic energy stored in the bonds [J/m].
+  double strain_energy() const;
+  /// Bonds per particle (for damage D = 1 - bonds / initial bonds).
+  void count_per_particle(std::size_t n, std::vector<std::uint32_t>& count) const;
+  /// True if i and j are bonded; needs partners() to be current (refresh_partners()).
+  bool bonded(std::uint32_t i, std::uint32_t j) const;
+  void refresh_partners(std::size_t n);
+
+  // Test access.
+  double normal_force(std::size_t k) const { return normal_force_[k]; }
+  double shear_force(std::size_t k) const { return shear_force_[k]; }
+  std::uint32_t first(std::size_t k) const { return i_[k]; }
+  std::uint32_t second(std::size_t k) const { return j_[k]; }
+
+ private:
+  BondLaw law_;
+  std::vector<std::uint32_t> i_, j_;
+  std::vector<double> rest_length_;
+  std::vector<double> shear_force_;   ///< F_t along t = (-n_y, n_x), acting on j [N/m]
+  std::vector<double> normal_force_;  ///< last F_n (compression positive) [N/m]
+  std::vector<std::uint8_t> broken_;  ///< 0, or 1 + BreakMode
+  std::vector<std::uint32_t> partner_start_, partner_;
+};
+
+}  // namespace rockcut::dem

@@ -1,0 +1,44 @@
+// Unbonded neighbour pairs (a half list built from a cell grid with a Verlet skin) and their
+// tangential spring history, which survives rebuilds. Contacts follow DESIGN section 4: normal
+// k_n * overlap (compression only), incremental tangential force limited by mu * F_n.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/energy.hpp"
+#include "core/force_buffers.hpp"
+#include "core/interaction_law.hpp"
+#include "core/particles.hpp"
+
+namespace rockcut::dem {
+
+class BondSet;
+class CellGrid;
+
+class ContactList {
+ public:
+  /// Lists every unbonded pair closer than r_i + r_j + skin, keeping the tangential force of pairs
+  /// that were already listed.
+  void rebuild(const Particles& p, const BondSet& bonds, double skin_m, CellGrid& grid);
+  /// Adds the pairs of freshly broken bonds (interleaved i, j): they may collide from now on.
+  void add_pairs(const std::vector<std::uint32_t>& pairs);
+
+  /// Adds contact forces for pairs [begin, end) into `out`; friction work into `friction_j`.
+  void compute(const Particles& p, const ContactLaw& law, double dt, std::size_t begin,
+               std::size_t end, ForceView out, double& friction_j);
+  /// Elastic energy in the active contacts [J/m].
+  double strain_energy(const Particles& p, const ContactLaw& law) const;
+
+  std::size_t size() const { return i_.size(); }
+
+ private:
+  std::vector<std::uint32_t> i_, j_;
+  std::vector<double> shear_force_;  ///< along t = (-n_y, n_x), acting on j [N/m]
+  // Rebuild scratch, kept to avoid allocating in steady state.
+  std::vector<std::uint64_t> old_keys_;
+  std::vector<double> old_shear_;
+  std::vector<std::uint32_t> order_;
+};
+
+}  // namespace rockcut::dem

@@ -1,0 +1,18 @@
+// Energy bookkeeping for the budget of DESIGN section 5 (per metre of thickness):
+//   work in (walls, tool, external and body forces) = kinetic + strain + damping + friction
+//                                                     + energy of broken bonds.
+// The step loop adds to these with OpenMP reductions; nothing is computed that is not asked for
+// elsewhere.
+#pragma once
+
+namespace rockcut::dem {
+
+struct EnergyLedger {
+  double boundary_work_j = 0.0;   ///< done by walls and the tool on the particles
+  double external_work_j = 0.0;   ///< done by the fluid force and gravity
+  double damping_j = 0.0;         ///< dissipated by local damping (>= 0)
+  double friction_j = 0.0;        ///< dissipated by sliding contacts (>= 0)
+  double broken_bond_j = 0.0;     ///< elastic energy released by bond breaks
+};
+
+}  // namespace rockcut::dem

@@ -1,0 +1,21 @@
+// A disc packing as a plain text file, so a specimen can be generated once (or elsewhere) and reused.
+//
+// Format: one disc per line, "x_m y_m radius_m" (SI metres, whitespace separated, any number format
+// std::from_chars accepts, e.g. 1.5e-3). Blank lines and everything after '#' are ignored.
+// write_packing_file writes 17 significant digits, so a write/read round trip is bit-exact.
+#pragma once
+
+#include <filesystem>
+
+#include "core/specimen_generator.hpp"
+
+namespace rockcut::dem {
+
+/// Throws std::runtime_error "<path>:<line>: <reason>" for an unreadable file, a malformed line
+/// (not exactly three numbers), a non-finite value or a non-positive radius.
+Packing read_packing_file(const std::filesystem::path& path);
+
+/// Throws std::runtime_error naming the path if it cannot be written.
+void write_packing_file(const std::filesystem::path& path, const Packing& packing);
+
+}  // namespace rockcut::dem

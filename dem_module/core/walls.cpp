@@ -1,0 +1,142 @@
+#include "core/walls.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace rockcut::dem {
+
+namespace {
+
+struct Closest {
+  double qx, qy;  // closest point on the segment
+};
+
+Closest closest_point(double px, double py, double ax, double ay, double bx, double by) {
+  const double ex = bx - ax, ey = by - ay;
+  const double len2 = ex * ex + ey * ey;
+  double s = len2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / len2 : 0.0;
+  s = std::clamp(s, 0.0, 1.0);
+  return {ax + s * ex, ay + s * ey};
+}
+
+}  // namespace
+
+std::uint32_t WallSet::add_body(const std::string& name, const std::vector<double>& vertices,
+                                bool closed, double velocity_x, double velocity_y) {
+  const auto body = static_cast<std::uint32_t>(bodies_.size());
+  WallBody b;
+  b.name = name;
+  b.velocity_x = velocity_x;
+  b.velocity_y = velocity_y;
+  bodies_.push_back(b);
+  offset_at_rebuild_.insert(offset_at_rebuild_.end(), {0.0, 0.0});
+  const std::size_t n = vertices.size() / 2;
+  for (std::size_t k = 0; k + 1 < n + (closed ? 1 : 0); ++k) {
+    const std::size_t a = k, c = (k + 1) % n;
+    segments_.push_back({vertices[2 * a], vertices[2 * a + 1], vertices[2 * c], vertices[2 * c + 1], body});
+  }
+  return body;
+}
+
+void WallSet::move(double dt) {
+  for (WallBody& b : bodies_) {
+    b.offset_x += b.velocity_x * dt;
+    b.offset_y += b.velocity_y * dt;
+  }
+}
+
+double WallSet::displacement_since_rebuild() const {
+  double d = 0.0;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    d = std::max(d, std::hypot(bodies_[b].offset_x - offset_at_rebuild_[2 * b],
+                               bodies_[b].offset_y - offset_at_rebuild_[2 * b + 1]));
+  }
+  return d;
+}
+
+void WallSet::rebuild(const Particles& p, double skin_m) {
+  std::map<std::uint64_t, double> history;
+  for (std::size_t k = 0; k < particle_.size(); ++k) {
+    if (shear_force_[k] != 0.0) {
+      history[(static_cast<std::uint64_t>(particle_[k]) << 32) | segment_[k]] = shear_force_[k];
+    }
+  }
+  particle_.clear();
+  segment_.clear();
+  shear_force_.clear();
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    offset_at_rebuild_[2 * b] = bodies_[b].offset_x;
+    offset_at_rebuild_[2 * b + 1] = bodies_[b].offset_y;
+  }
+  const std::size_t n = p.size();
+  for (std::uint32_t s = 0; s < segments_.size(); ++s) {
+    const Segment& seg = segments_[s];
+    const WallBody& b = bodies_[seg.body];
+    const double ax = seg.ax + b.offset_x, ay = seg.ay + b.offset_y;
+    const double bx = seg.bx + b.offset_x, by = seg.by + b.offset_y;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const double px = p.position[2 * i], py = p.position[2 * i + 1];
+      const Closest c = closest_point(px, py, ax, ay, bx, by);
+      const double reach = p.radius[i] + skin_m;
+      const double dx = px - c.qx, dy = py - c.qy;
+      if (dx * dx + dy * dy > reach * reach) continue;
+      particle_.push_back(i);
+      segment_.push_back(s);
+      const auto it = history.find((static_cast<std::uint64_t>(i) << 32) | s);
+      shear_force_.push_back(it == history.end() ? 0.0 : it->second);
+    }
+  }
+}
+
+void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, ForceView out,
+                      double& boundary_work_j, double& friction_j) {
+  for (WallBody& b : bodies_) {
+    b.previous_force_x = b.force_x;
+    b.previous_force_y = b.force_y;
+    b.force_x = b.force_y = 0.0;
+  }
+  const double kn = law.normal_stiffness_n_m, ks = law.shear_stiffness_n_m, mu = law.friction;
+  for (std::size_t k = 0; k < particle_.size(); ++k) {
+    const std::uint32_t i = particle_[k];
+    const Segment& seg = segments_[segment_[k]];
+    WallBody& b = bodies_[seg.body];
+    const double px = p.position[2 * i], py = p.position[2 * i + 1], r = p.radius[i];
+    const Closest c = closest_point(px, py, seg.ax + b.offset_x, seg.ay + b.offset_y,
+                                    seg.bx + b.offset_x, seg.by + b.offset_y);
+    const double dx = px - c.qx, dy = py - c.qy;
+    const double d2 = dx * dx + dy * dy;
+    if (d2 >= r * r || d2 == 0.0) {
+      shear_force_[k] = 0.0;
+      continue;
+    }
+    const double dist = std::sqrt(d2);
+    const double nx = dx / dist, ny = dy / dist;  // from the wall to the disc
+    const double tx = -ny, ty = nx;
+    const double fn = kn * (r - dist);
+    // Disc contact point relative to the wall, rotation included.
+    const double vt = (p.velocity[2 * i] - b.velocity_x) * tx +
+                      (p.velocity[2 * i + 1] - b.velocity_y) * ty - p.angular_velocity[i] * r;
+    double fs = shear_force_[k] - ks * vt * dt;
+    const double limit = mu * fn;
+    if (std::abs(fs) > limit) {
+      friction_j += limit * (std::abs(fs) - limit) / ks;
+      fs = std::copysign(limit, fs);
+    }
+    shear_force_[k] = fs;
+    const double fx = fn * nx + fs * tx, fy = fn * ny + fs * ty;  // on the disc
+    out.force[2 * i] += fx;
+    out.force[2 * i + 1] += fy;
+    out.torque[i] -= fs * r;
+    b.force_x -= fx;
+    b.force_y -= fy;
+  }
+  // Work of each body on the discs over the last drift: the trapezoid of its force, as Verlet
+  // moves under the mean of the forces at both ends of a step.
+  for (const WallBody& b : bodies_) {
+    boundary_work_j -= 0.5 * ((b.previous_force_x + b.force_x) * b.velocity_x +
+                              (b.previous_force_y + b.force_y) * b.velocity_y) * dt;
+  }
+}
+
+}  // namespace rockcut::dem

@@ -1,0 +1,57 @@
+// Rigid walls and the tool: bodies made of line segments that move at a prescribed velocity and
+// push discs with the contact law of DESIGN section 4 (a segment's end is a rounded corner). The
+// force on each body is summed every step: the tool force is the sum of its contact forces.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/force_buffers.hpp"
+#include "core/interaction_law.hpp"
+#include "core/particles.hpp"
+
+namespace rockcut::dem {
+
+struct Segment {
+  double ax, ay, bx, by;  ///< end points at t = 0 [m]
+  std::uint32_t body;
+};
+
+struct WallBody {
+  std::string name;
+  double velocity_x = 0.0, velocity_y = 0.0;  ///< [m/s]
+  double offset_x = 0.0, offset_y = 0.0;      ///< displacement since t = 0 [m]
+  double force_x = 0.0, force_y = 0.0;        ///< force of the discs on the body, last step [N/m]
+  double previous_force_x = 0.0, previous_force_y = 0.0;  ///< the step before (work trapezoid)
+};
+
+class WallSet {
+ public:
+  /// Adds a body made of the polyline through `vertices` (x0, y0, x1, y1, ...); closed if asked.
+  std::uint32_t add_body(const std::string& name, const std::vector<double>& vertices,
+                         bool closed, double velocity_x, double velocity_y);
+  bool empty() const { return segments_.empty(); }
+  const std::vector<WallBody>& bodies() const { return bodies_; }
+  const std::vector<Segment>& segments() const { return segments_; }
+
+  /// Moves every body by its velocity over dt.
+  void move(double dt);
+  /// Largest body displacement since the last rebuild [m] (for the neighbour-list skin).
+  double displacement_since_rebuild() const;
+  /// Lists the (disc, segment) pairs closer than r + skin, keeping their tangential history.
+  void rebuild(const Particles& p, double skin_m);
+  /// Adds wall forces on the discs into `out`, sets each body's force, and adds the work the
+  /// bodies did on the discs over dt to `boundary_work_j` and friction work to `friction_j`.
+  void compute(const Particles& p, const ContactLaw& law, double dt, ForceView out,
+               double& boundary_work_j, double& friction_j);
+
+ private:
+  std::vector<WallBody> bodies_;
+  std::vector<Segment> segments_;
+  std::vector<double> offset_at_rebuild_;  // 2 per body
+  std::vector<std::uint32_t> particle_, segment_;
+  std::vector<double> shear_force_;
+};
+
+}  // namespace rockcut::dem

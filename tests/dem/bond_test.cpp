@@ -1,0 +1,86 @@
+// Bonds (paper section 3.1, figure 4): they break at T_n in tension and at T_s in shear, within one
+// step's load increment, never in compression, and the broken pair may still collide.
+#include <gtest/gtest.h>
+
+#include "core/dem_system.hpp"
+#include "dem/dem_test_support.hpp"
+
+namespace rockcut::dem {
+namespace {
+
+// Two bonded discs; disc 1 is driven at constant velocity. Both get a mass of 1e30 kg/m, so the
+// bond force (<= 1e5 N/m) changes their velocities by less than 1e-35 m/s per step.
+DemSystem driven_pair(double vx, double vy, const BondLaw& law) {
+  Particles p;
+  const double r = 3e-4;
+  p.add(0.0, 0.0, r, 2800);
+  p.add(2 * r, 0.0, r, 2800);
+  for (auto* inv : {&p.inv_mass, &p.inv_inertia}) (*inv)[0] = (*inv)[1] = 1e-30;
+  p.velocity = {0.0, 0.0, vx, vy};
+  BondSet bonds = test::bond_all_touching(p, law);
+  DemSettings s;
+  s.contact = {law.normal_stiffness_n_m, law.shear_stiffness_n_m, 1.0};
+  return DemSystem(std::move(p), s, std::move(bonds));
+}
+
+TEST(Bond, BreaksInTensionAtTn) {
+  const BondLaw law = test::table1_bond();
+  const double v = 1e-3, dt = 1e-8;
+  const double increment = law.normal_stiffness_n_m * v * dt;  // load added per step [N/m]
+  DemSystem s = driven_pair(v, 0.0, law);
+  ASSERT_EQ(s.bonds().size(), 1u);
+  double last_force = 0.0;
+  while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
+    last_force = -s.bonds().normal_force(0);
+    s.step(dt);
+  }
+  ASSERT_EQ(s.breaks().size(), 1u);
+  EXPECT_EQ(s.breaks()[0].mode, BreakMode::tensile);
+  // The last force carried is below T_n and within one increment of it.
+  EXPECT_LE(last_force, law.tensile_strength_n);
+  EXPECT_GT(last_force, law.tensile_strength_n - increment * (1 + 1e-9));
+}
+
+TEST(Bond, BreaksInShearAtTs) {
+  const BondLaw law = test::table1_bond();
+  const double v = 1e-3, dt = 1e-8;
+  const double increment = law.shear_stiffness_n_m * v * dt;
+  DemSystem s = driven_pair(0.0, v, law);
+  double last_shear = 0.0;
+  while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
+    last_shear = std::abs(s.bonds().shear_force(0));
+    s.step(dt);
+  }
+  ASSERT_EQ(s.breaks().size(), 1u);
+  EXPECT_EQ(s.breaks()[0].mode, BreakMode::shear);
+  EXPECT_LE(last_shear, law.shear_strength_n);
+  // The normal part of the motion is second order (the pair rotates), so the shear increment
+  // per step is k_s v dt to within 1e-6.
+  EXPECT_GT(last_shear, law.shear_strength_n - increment * 1.000001);
+}
+
+TEST(Bond, NeverBreaksInCompressionAndCarriesIt) {
+  const BondLaw law = test::table1_bond();
+  DemSystem s = driven_pair(-0.1, 0.0, law);
+  for (int k = 0; k < 20000; ++k) s.step(1e-8);  // 20 um closer: 20 times T_n / k_n
+  EXPECT_EQ(s.bonds().size(), 1u);
+  EXPECT_GT(s.bonds().normal_force(0), 5 * law.tensile_strength_n);
+}
+
+TEST(Bond, BrokenPairStillCollides) {
+  const BondLaw law = test::table1_bond();
+  DemSystem s = driven_pair(1e-3, 0.0, law);
+  while (s.bonds().size() == 1) s.step(1e-8);
+  EXPECT_EQ(s.contacts().size(), 1u) << "the freed pair joins the contact list";
+}
+
+TEST(Bond, InstallationBondsTouchingPairsOnly) {
+  Particles p = test::hex_block(6, 5, 1e-3);
+  BondSet b = test::bond_all_touching(p, test::table1_bond());
+  // A 6 x 5 hexagonal block: 5 bonds per row along x (25), and between consecutive rows each disc
+  // touches two above except at the row ends: 4 row gaps * (2 * 6 - 1) = 44.
+  EXPECT_EQ(b.size(), 25u + 44u);
+}
+
+}  // namespace
+}  // namespace rockcut::dem

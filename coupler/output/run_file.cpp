@@ -1,5 +1,7 @@
 #include "output/run_file.hpp"
 
+#include <map>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -33,6 +35,7 @@ struct RunFile::Impl {
   std::string ctx;  // the HDF5 file's path, prefixed to every error
   h5::Handle file;
   std::optional<Timeseries> timeseries;
+  std::map<std::string, Timeseries> tables;  // event logs such as /breaks
   h5::Handle vertex_ids;  // 0, 1, 2, ...: the connectivity every XDMF topology selects from
   hsize_t vertex_id_count = 0;
   std::optional<XdmfWriter> xdmf;
@@ -145,6 +148,23 @@ void RunFile::append_timeseries(double time_s, std::uint64_t step,
   impl_->timeseries->append(time_s, step, scalars);
 }
 
+void RunFile::append_record(const std::string& table, double time_s, std::uint64_t step,
+                            const std::vector<std::pair<std::string, double>>& values) {
+  Impl& m = *impl_;
+  m.require_open();
+  if (!is_valid_dataset_name(table) || table == "timeseries" || table == "frames" ||
+      table == "xdmf") {
+    throw std::invalid_argument(m.ctx + ": invalid table name \"" + table + "\"");
+  }
+  auto it = m.tables.find(table);
+  if (it == m.tables.end()) {
+    it = m.tables.emplace(std::piecewise_construct, std::forward_as_tuple(table),
+                          std::forward_as_tuple(m.file.get(), m.ctx, "/" + table))
+             .first;
+  }
+  it->second.append(time_s, step, values);
+}
+
 void RunFile::write_frame(double time_s, std::uint64_t step, std::size_t particle_count,
                           const std::vector<FrameField>& fields) {
   Impl& m = *impl_;
@@ -201,6 +221,13 @@ void RunFile::close() {
     m.timeseries->close();
   } catch (const std::exception& e) {
     note(e);
+  }
+  for (auto& [name, table] : m.tables) {
+    try {
+      table.close();
+    } catch (const std::exception& e) {
+      note(e);
+    }
   }
   if (m.vertex_ids.close() < 0 && first_error.empty()) {
     first_error = m.ctx + ": cannot close " + kVertexIds + " (HDF5: " + h5::take_error_stack() + ")";

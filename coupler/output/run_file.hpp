@@ -36,6 +36,11 @@ class RunFile {
   void append_timeseries(double time_s, std::uint64_t step,
                          const std::vector<std::pair<std::string, double>>& scalars);
 
+  /// Appends one row to the event table /<table> (created on first use), with the same layout as
+  /// /timeseries: columns time_s, step and one per value name. Used for the bond-break log.
+  void append_record(const std::string& table, double time_s, std::uint64_t step,
+                     const std::vector<std::pair<std::string, double>>& values);
+
   /// Writes frame k as /frames/<k:06d>/<field> (chunked, deflate-compressed) with attributes time_s
   /// and step, flushes, and rewrites run.xdmf. Vector fields must have 2 components; "position" is
   /// required and becomes the XDMF geometry (XY).

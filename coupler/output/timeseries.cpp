@@ -10,9 +10,11 @@ bool is_valid_dataset_name(const std::string& name) {
          name.find('\0') == std::string::npos;
 }
 
-Timeseries::Timeseries(hid_t file, std::string context) : context_(std::move(context)) {
-  group_ = h5::group(H5Gcreate2(file, "/timeseries", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                     context_, "cannot create group /timeseries");
+Timeseries::Timeseries(hid_t file, std::string context, std::string group)
+    : context_(std::move(context)), group_path_(std::move(group)) {
+  group_ = h5::group(
+      H5Gcreate2(file, group_path_.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), context_,
+      "cannot create group " + group_path_);
   const hsize_t one = 1;
   one_element_ = h5::dataspace(H5Screate_simple(1, &one, nullptr), context_,
                                "cannot create a one-element dataspace");
@@ -23,7 +25,7 @@ Timeseries::Timeseries(hid_t file, std::string context) : context_(std::move(con
 }
 
 std::string Timeseries::where(const std::string& column) const {
-  return "/timeseries/" + column;
+  return group_path_ + "/" + column;
 }
 
 Timeseries::Column Timeseries::create_column(const std::string& name, hid_t file_type,
@@ -137,7 +139,7 @@ void Timeseries::close() {
   close_one(time_.dataset, where("time_s"));
   close_one(step_.dataset, where("step"));
   close_one(one_element_, "a dataspace");
-  close_one(group_, "/timeseries");
+  close_one(group_, group_path_);
   if (!first_error.empty()) throw std::runtime_error(first_error);
 }
 

@@ -15,9 +15,10 @@ class Timeseries {
  public:
   static constexpr hsize_t kChunkRows = 1024;
 
-  /// Creates /timeseries with the time_s (float64) and step (uint64) columns under `file`.
-  /// `context` (the file name) prefixes every error message.
-  Timeseries(hid_t file, std::string context);
+  /// Creates the group `group` (default /timeseries) with the time_s (float64) and step (uint64)
+  /// columns under `file`. `context` (the file name) prefixes every error message. The same table
+  /// form stores event logs such as /breaks (one row per bond break).
+  Timeseries(hid_t file, std::string context, std::string group = "/timeseries");
 
   /// Appends one row. A column first seen now is created with NaN for the earlier rows; a known
   /// column missing from `scalars` gets NaN (the dataset fill value). O(columns), never O(rows).
@@ -41,6 +42,7 @@ class Timeseries {
   std::string where(const std::string& column) const;
 
   std::string context_;
+  std::string group_path_;
   h5::Handle group_;
   h5::Handle one_element_;  // memory dataspace of one value, reused by every write
   Column time_;

@@ -107,6 +107,7 @@ void RunSession::record_step_report(const wire::StepReport& report) {
 void RunSession::maybe_record(bool last) {
   if (step_ >= next_series_step_ || last) {
     run_file_->append_timeseries(time_s_, step_, scalars_);
+    cutting_->observe(scalars_);
     const std::uint64_t every = scene_.output().timeseries_every_steps();
     next_series_step_ = (step_ / every + 1) * every;
   }
@@ -123,11 +124,23 @@ void RunSession::maybe_record(bool last) {
   }
 }
 
+void RunSession::write_breaks(const wire::Message& frame) {
+  // One row per bond break in /breaks: time, place and mode (0 tensile, 1 shear).
+  const auto time = frame.array("break_time_s", 1);
+  const auto position = frame.array("break_position", 2);
+  const auto mode = frame.array("break_mode", 1);
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    run_file_->append_record("breaks", time[k], step_,
+                             {{"mode", mode[k]}, {"x_m", position[2 * k]}, {"y_m", position[2 * k + 1]}});
+  }
+}
+
 void RunSession::write_frame() {
   request_.clear();
   for (const std::string& f : dem_frame_fields_) {
     request_.envelope.mutable_frame_request()->add_fields(f);
   }
+  if (dem_logs_breaks_) request_.envelope.mutable_frame_request()->add_fields("breaks");
   dem_.link->request(request_, reply_);
   std::vector<FrameField> fields;
   for (const std::string& f : dem_frame_fields_) {
@@ -149,7 +162,14 @@ void RunSession::write_frame() {
   const auto position = reply_.array(wire::field::kPosition, 2);
   if (initial_position_.empty()) initial_position_.assign(position.begin(), position.end());
   last_position_.assign(position.begin(), position.end());
+  for (const FrameField& f : fields) {
+    if (std::find(verification_fields_.begin(), verification_fields_.end(), f.name) !=
+        verification_fields_.end()) {
+      final_fields_[f.name].assign(f.values.begin(), f.values.end());
+    }
+  }
   run_file_->write_frame(time_s_, step_, dem_.init.particle_count(), fields);
+  if (dem_logs_breaks_) write_breaks(reply_);
 }
 
 }  // namespace rockcut::coupler

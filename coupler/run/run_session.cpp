@@ -48,6 +48,15 @@ RunSession::RunSession(const RunOptions& options, scene::LoadedScene scene)
     : options_(options), loaded_(std::move(scene)), scene_(loaded_.scene) {
   coupled_ = scene_.has_fluid();
   if (options_.out_dir.empty()) options_.out_dir = fs::path("out") / loaded_.path.stem();
+  cutting_ = std::make_unique<CuttingSummary>(scene_);
+  // A packing file named in the scene is relative to the scene file; the DEM gets it absolute.
+  if (loaded_.scene.dem().has_packing_file()) {
+    const fs::path p(loaded_.scene.dem().packing_file().path());
+    if (p.is_relative()) {
+      loaded_.scene.mutable_dem()->mutable_packing_file()->set_path(
+          fs::absolute(loaded_.path.parent_path() / p).lexically_normal().string());
+    }
+  }
 }
 
 RunSession::~RunSession() {
@@ -162,6 +171,7 @@ void RunSession::init_modules() {
 }
 
 void RunSession::check_frame_fields() {
+  dem_logs_breaks_ = contains(dem_.init.provides(), "breaks") && scene_.dem().has_bonds();
   std::vector<std::string> wanted(scene_.output().frame_fields().begin(),
                                   scene_.output().frame_fields().end());
   if (wanted.empty()) wanted = kDefaultFrameFields;
@@ -179,6 +189,25 @@ void RunSession::check_frame_fields() {
                       (fluid_ ? "; " + fluid_->init.model() + ": " + join(fluid_->init.provides())
                               : std::string("; no fluid")) +
                       ")");
+    }
+  }
+  // Fields the verification compares at the end are written in every frame (the last one is kept).
+  if (!scene_.has_verification()) return;
+  try {
+    verification_fields_ = verification_fields(scene_);
+  } catch (const std::invalid_argument& e) {
+    throw PlanError(e.what());
+  }
+  for (const std::string& f : verification_fields_) {
+    auto has = [&](const std::vector<std::string>& v) {
+      return std::find(v.begin(), v.end(), f) != v.end();
+    };
+    if (has(dem_frame_fields_) || has(fluid_frame_fields_)) continue;
+    if (fluid_ && contains(fluid_->init.provides(), f)) {
+      fluid_frame_fields_.push_back(f);
+    } else {
+      throw PlanError("verification." + scene_.verification().analytical() + " needs the field \"" +
+                      f + "\", which no module of this scene provides");
     }
   }
 }
@@ -220,6 +249,7 @@ void RunSession::print_startup() const {
   } else {
     std::fprintf(stderr, "fluid      none (dry scene: no fluid process)\n");
   }
+  for (const std::string& note : dem_.init.notes()) std::fprintf(stderr, "dem        %s\n", note.c_str());
   for (const std::string& line : plan_.report) std::fprintf(stderr, "%s\n", line.c_str());
   std::fprintf(stderr, "output     %s\n", options_.out_dir.c_str());
 }
@@ -278,7 +308,9 @@ int RunSession::run() {
 
   int code = kExitOk;
   if (scene_.has_verification()) {
-    const VerificationResult v = verify(scene_, initial_position_, last_position_, time_s_);
+    FinalState state{time_s_, initial_position_, last_position_, {}};
+    for (const auto& [name, values] : final_fields_) state.fields.emplace(name, values);
+    const VerificationResult v = verify(scene_, state);
     summary_.set("verification", v.analytical);
     summary_.set("error_max_rel", v.error_max_rel);
     summary_.set("error_l2_rel", v.error_l2_rel);
@@ -295,6 +327,7 @@ int RunSession::run() {
 int RunSession::finish(int code, const std::string& status, const std::string& reason) {
   const double wall = progress_ ? progress_->elapsed_s() : 0.0;
   summary_.set("status", status);
+  cutting_->write(summary_);
   if (!reason.empty()) summary_.set("error", reason);
   summary_.set("time_s", time_s_);
   summary_.set("steps", static_cast<std::int64_t>(step_));

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "output/run_file.hpp"
 #include "output/summary_json.hpp"
+#include "run/cutting_summary.hpp"
 #include "run/module_link.hpp"
 #include "run/progress.hpp"
 #include "run/time_plan.hpp"
@@ -71,6 +73,7 @@ class RunSession {
   void record_step_report(const wire::StepReport& report);
   void maybe_record(bool force_frame);
   void write_frame();
+  void write_breaks(const wire::Message& frame);
 
   RunOptions options_;
   scene::LoadedScene loaded_;
@@ -85,6 +88,8 @@ class RunSession {
   std::vector<std::string> dem_frame_fields_, fluid_frame_fields_;
 
   std::unique_ptr<RunFile> run_file_;
+  std::unique_ptr<CuttingSummary> cutting_;
+  bool dem_logs_breaks_ = false;  // the DEM hands out its bond breaks with every frame
   Summary summary_;
   std::unique_ptr<Progress> progress_;
 
@@ -97,6 +102,9 @@ class RunSession {
   std::uint64_t bytes_exchanged_ = 0;
   std::vector<std::pair<std::string, double>> scalars_;
   std::vector<double> initial_position_, last_position_;
+  // Final per-particle fields the verification compares (e.g. the fluid's pressure).
+  std::vector<std::string> verification_fields_;
+  std::map<std::string, std::vector<double>> final_fields_;
 
   // Reused messages: no allocation of message objects per exchange.
   wire::Message request_, reply_, fluid_request_, fluid_reply_;

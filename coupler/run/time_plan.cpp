@@ -37,6 +37,10 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
 
   const rockcut::Time& time = scene.time();
   const Limit* dem_limit = smallest(dem_limits);
+  const Limit* fluid_limit = smallest(fluid_limits);
+  // Fluid-only scenes (prescribed motion: the DEM has no limit of its own) take the fluid step as
+  // the DEM step, N = 1.
+  const bool dt_from_fluid = !time.has_dt_s() && !dem_limit && coupled && fluid_limit;
   if (time.has_dt_s()) {
     if (dem_limit && time.dt_s() > dem_limit->dt_max_s) {
       throw PlanError("time.dt_s = " + fmt(time.dt_s()) + " s exceeds the " + dem_limit->module +
@@ -50,12 +54,15 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
     plan.dt_s = time.dt_safety() * dem_limit->dt_max_s;
     plan.binding = dem_limit->module + " " + dem_limit->name + " x dt_safety " +
                    fmt(time.dt_safety());
+  } else if (dt_from_fluid) {
+    plan.dt_s = time.dt_safety() * fluid_limit->dt_max_s;
+    plan.binding = fluid_limit->module + " " + fluid_limit->name + " x dt_safety " +
+                   fmt(time.dt_safety()) + " (no DEM limit: the fluid step is the DEM step)";
   } else {
     throw PlanError("no stability limit bounds the DEM step in this scene (no contacts or bonds); "
                     "set time.dt_s");
   }
 
-  const Limit* fluid_limit = smallest(fluid_limits);
   if (coupled) {
     const double max_n = fluid_limit ? std::floor(fluid_limit->dt_max_s / plan.dt_s) : 1e9;
     if (fluid_limit && max_n < 1) {
@@ -74,7 +81,8 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
       }
     } else {
       // Without a fluid limit the paper's scheme (N = 1) is kept.
-      plan.coupling_interval = fluid_limit ? static_cast<unsigned>(std::min(max_n, 1e6)) : 1;
+      plan.coupling_interval =
+          fluid_limit && !dt_from_fluid ? static_cast<unsigned>(std::min(max_n, 1e6)) : 1;
     }
   }
   plan.total_steps = static_cast<std::uint64_t>(std::ceil(time.end_time_s() / plan.dt_s - 1e-9));
@@ -83,7 +91,8 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
     plan.report.push_back("chosen coupling interval N = " + std::to_string(plan.coupling_interval) +
                           ", fluid step " + fmt(plan.coupling_interval * plan.dt_s) + " s" +
                           (scene.coupling().has_interval() ? " (set in the scene)"
-                           : fluid_limit ? " (binding: " + fluid_limit->name + ")"
+                           : dt_from_fluid ? " (fluid-only scene: one DEM step per fluid step)"
+                           : fluid_limit   ? " (binding: " + fluid_limit->name + ")"
                                          : " (no fluid limit: the paper's N = 1)"));
   }
   plan.report.push_back("steps: " + std::to_string(plan.total_steps) + " to t = " +

@@ -6,12 +6,16 @@
 
 namespace rockcut::coupler {
 
-VerificationResult verify(const rockcut::Scene& scene, std::span<const double> x0,
-                          std::span<const double> x, double time_s) {
+std::vector<std::string> verification_fields(const rockcut::Scene& scene) {
+  if (scene.verification().analytical() == "uniform_acceleration") return {};
+  return fluid_verification_fields(scene);
+}
+
+VerificationResult verify(const rockcut::Scene& scene, const FinalState& state) {
   const rockcut::Verification& v = scene.verification();
-  if (v.analytical() != "uniform_acceleration") {
-    throw std::invalid_argument("unknown analytical solution '" + v.analytical() + "'");
-  }
+  if (v.analytical() != "uniform_acceleration") return verify_fluid(scene, state);
+  const std::span<const double> x0 = state.initial_position, x = state.position;
+  const double time_s = state.time_s;
   if (x0.size() != x.size()) throw std::invalid_argument("position arrays differ in size");
   double ax = scene.dem().gravity_m_s2().x();
   double ay = scene.dem().gravity_m_s2().y();

@@ -38,7 +38,7 @@ BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tole
   permute(b.j_);
   permute(b.rest_length_);
   b.shear_force_.assign(b.i_.size(), 0.0);
-  b.normal_force_.assign(b.i_.size(), 0.0);
+  b.normal_force_at_break_.assign(b.i_.size(), 0.0);
   b.broken_.assign(b.i_.size(), 0);
   b.refresh_partners(p.size());
   return b;
@@ -50,40 +50,44 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
-  const double kn = law_.normal_stiffness_n_m, ks = law_.shear_stiffness_n_m;
+  const std::uint32_t* bi = i_.data();
+  const std::uint32_t* bj = j_.data();
+  const double* rest = rest_length_.data();
+  double* shear = shear_force_.data();
+  double* f = out.force;
+  double* q = out.torque;
+  const double kn = law_.normal_stiffness_n_m, ks_dt = law_.shear_stiffness_n_m * dt;
   const double tn = law_.tensile_strength_n, ts = law_.shear_strength_n;
   bool broke = false;
   for (std::size_t k = begin; k < end; ++k) {
-    const std::uint32_t i = i_[k], j = j_[k];
+    const std::uint32_t i = bi[k], j = bj[k];
     const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
-    const double len = std::sqrt(dx * dx + dy * dy);
-    const double nx = dx / len, ny = dy / len;
-    const double tx = -ny, ty = nx;
-    const double fn = kn * (rest_length_[k] - len);  // compression positive
+    const double d2 = dx * dx + dy * dy;
+    const double inv_len = 1.0 / std::sqrt(d2);
+    const double nx = dx * inv_len, ny = dy * inv_len;  // t = (-ny, nx)
+    const double fn = kn * (rest[k] - d2 * inv_len);     // compression positive
     // Tangential velocity of j's contact point relative to i's, rotation included.
-    const double vt = (v[2 * j] - v[2 * i]) * tx + (v[2 * j + 1] - v[2 * i + 1]) * ty -
+    const double vt = -(v[2 * j] - v[2 * i]) * ny + (v[2 * j + 1] - v[2 * i + 1]) * nx -
                       w[i] * r[i] - w[j] * r[j];
-    const double fs = shear_force_[k] - ks * vt * dt;
-    // Perfectly brittle: exceeding a strength breaks the bond in this evaluation. When both are
-    // exceeded, the mode is the one exceeded by the larger fraction.
-    const double tension_ratio = -fn / tn, shear_ratio = std::abs(fs) / ts;
-    if (tension_ratio > 1.0 || shear_ratio > 1.0) {
+    const double fs = shear[k] - ks_dt * vt;
+    // Perfectly brittle: exceeding a strength breaks the bond in this evaluation, with no force.
+    if (fn < -tn || fs > ts || fs < -ts) {
+      const double tension_ratio = -fn / tn, shear_ratio = std::abs(fs) / ts;
       broken_[k] = 1 + static_cast<std::uint8_t>(tension_ratio >= shear_ratio ? BreakMode::tensile
                                                                                : BreakMode::shear);
-      normal_force_[k] = fn;
-      shear_force_[k] = fs;
+      normal_force_at_break_[k] = fn;
+      shear[k] = fs;
       broke = true;
       continue;
     }
-    shear_force_[k] = fs;
-    normal_force_[k] = fn;
-    const double fx = fn * nx + fs * tx, fy = fn * ny + fs * ty;  // on j
-    out.force[2 * i] -= fx;
-    out.force[2 * i + 1] -= fy;
-    out.force[2 * j] += fx;
-    out.force[2 * j + 1] += fy;
-    out.torque[i] -= fs * r[i];
-    out.torque[j] -= fs * r[j];
+    shear[k] = fs;
+    const double fx = fn * nx - fs * ny, fy = fn * ny + fs * nx;  // on j
+    f[2 * i] -= fx;
+    f[2 * i + 1] -= fy;
+    f[2 * j] += fx;
+    f[2 * j + 1] += fy;
+    q[i] -= fs * r[i];
+    q[j] -= fs * r[j];
   }
   if (broke) any_broken = true;
 }
@@ -94,7 +98,7 @@ void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondB
   for (std::size_t k = 0; k < i_.size(); ++k) {
     if (broken_[k]) {
       const std::uint32_t i = i_[k], j = j_[k];
-      const double fn = normal_force_[k], fs = shear_force_[k];
+      const double fn = normal_force_at_break_[k], fs = shear_force_[k];
       ledger.broken_bond_j += 0.5 * fn * fn / law_.normal_stiffness_n_m +
                               0.5 * fs * fs / law_.shear_stiffness_n_m;
       breaks.push_back({static_cast<BreakMode>(broken_[k] - 1), time_s,
@@ -109,7 +113,6 @@ void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondB
     j_[keep] = j_[k];
     rest_length_[keep] = rest_length_[k];
     shear_force_[keep] = shear_force_[k];
-    normal_force_[keep] = normal_force_[k];
     broken_[keep] = 0;
     ++keep;
   }
@@ -117,14 +120,22 @@ void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondB
   j_.resize(keep);
   rest_length_.resize(keep);
   shear_force_.resize(keep);
-  normal_force_.resize(keep);
+  normal_force_at_break_.resize(keep);
   broken_.resize(keep);
 }
 
-double BondSet::strain_energy() const {
+double BondSet::normal_force(std::size_t k, const Particles& p) const {
+  const std::uint32_t i = i_[k], j = j_[k];
+  const double dx = p.position[2 * j] - p.position[2 * i];
+  const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
+  return law_.normal_stiffness_n_m * (rest_length_[k] - std::sqrt(dx * dx + dy * dy));
+}
+
+double BondSet::strain_energy(const Particles& p) const {
   double e = 0.0;
   for (std::size_t k = 0; k < i_.size(); ++k) {
-    e += 0.5 * normal_force_[k] * normal_force_[k] / law_.normal_stiffness_n_m +
+    const double fn = normal_force(k, p);
+    e += 0.5 * fn * fn / law_.normal_stiffness_n_m +
          0.5 * shear_force_[k] * shear_force_[k] / law_.shear_stiffness_n_m;
   }
   return e;

@@ -35,8 +35,8 @@ class BondSet {
   void remove_broken(const Particles& p, double time_s, std::vector<BondBreak>& breaks,
                      std::vector<std::uint32_t>& freed_pairs, EnergyLedger& ledger);
 
-  /// Elastic energy stored in the bonds [J/m].
-  double strain_energy() const;
+  /// Elastic energy stored in the bonds at the current positions [J/m].
+  double strain_energy(const Particles& p) const;
   /// Bonds per particle (for damage D = 1 - bonds / initial bonds).
   void count_per_particle(std::size_t n, std::vector<std::uint32_t>& count) const;
   /// True if i and j are bonded; needs partners() to be current (refresh_partners()).
@@ -44,7 +44,8 @@ class BondSet {
   void refresh_partners(std::size_t n);
 
   // Test access.
-  double normal_force(std::size_t k) const { return normal_force_[k]; }
+  /// Normal force of bond k at the current positions (compression positive) [N/m].
+  double normal_force(std::size_t k, const Particles& p) const;
   double shear_force(std::size_t k) const { return shear_force_[k]; }
   std::uint32_t first(std::size_t k) const { return i_[k]; }
   std::uint32_t second(std::size_t k) const { return j_[k]; }
@@ -54,7 +55,7 @@ class BondSet {
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> rest_length_;
   std::vector<double> shear_force_;   ///< F_t along t = (-n_y, n_x), acting on j [N/m]
-  std::vector<double> normal_force_;  ///< last F_n (compression positive) [N/m]
+  std::vector<double> normal_force_at_break_;  ///< F_n when the bond broke (energy released)
   std::vector<std::uint8_t> broken_;  ///< 0, or 1 + BreakMode
   std::vector<std::uint32_t> partner_start_, partner_;
 };

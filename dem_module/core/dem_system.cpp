@@ -39,6 +39,7 @@ DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet b
       walls_(std::move(walls)) {
   if (settings_.threads < 1) settings_.threads = 1;
   has_pairs_ = settings_.contact.normal_stiffness_n_m > 0 || bonds_.size() > 0 || !walls_.empty();
+  has_body_forces_ = settings_.gravity_x_m_s2 != 0.0 || settings_.gravity_y_m_s2 != 0.0;
   if (settings_.skin_m <= 0) {
     double r_min = 1e300;
     for (double r : particles_.radius) r_min = std::min(r_min, r);
@@ -85,6 +86,7 @@ void DemSystem::drift(double dt) {
   const double* inv_m = particles_.inv_mass.data();
   const double* fd = damping_force_.empty() ? nullptr : damping_force_.data();
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  const bool body = has_body_forces_;
   double vmax2 = 0.0, work = 0.0, damping = 0.0;
   // Verlet moves x by v^{n+1/2} dt under the mean of F^n and F^{n+1}: each force's work over the
   // drift is the trapezoid 1/2 (F^n + F^{n+1}) . dx. The F^n halves are added here, the F^{n+1}
@@ -96,7 +98,9 @@ void DemSystem::drift(double dt) {
     x[2 * i] += dt * vx;
     x[2 * i + 1] += dt * vy;
     vmax2 = std::max(vmax2, vx * vx + vy * vy);
-    work += ((fe[2 * i] + gx / inv_m[i]) * vx + (fe[2 * i + 1] + gy / inv_m[i]) * vy) * 0.5 * dt;
+    if (body) {
+      work += ((fe[2 * i] + gx / inv_m[i]) * vx + (fe[2 * i + 1] + gy / inv_m[i]) * vy) * 0.5 * dt;
+    }
     if (fd) damping -= (fd[3 * i] * vx + fd[3 * i + 1] * vy + fd[3 * i + 2] * w[i]) * 0.5 * dt;
   }
   ledger_.external_work_j += work;
@@ -183,13 +187,16 @@ void DemSystem::finish_forces() {
   if (alpha > 0) damping_force_.resize(3 * n);
   double* fd = damping_force_.data();
   const double h = 0.5 * dt_last_;  // the F^{n+1} half of the trapezoid, see drift()
+  const bool body = has_body_forces_;
   double damping = 0.0, work = 0.0;
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) \
     if (settings_.threads > 1) reduction(+ : damping, work)
   for (std::size_t i = 0; i < n; ++i) {
     double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
     const double vx = v[2 * i], vy = v[2 * i + 1];
-    work += ((fe[2 * i] + gx / inv_m[i]) * vx + (fe[2 * i + 1] + gy / inv_m[i]) * vy) * h;
+    if (body) {
+      work += ((fe[2 * i] + gx / inv_m[i]) * vx + (fe[2 * i + 1] + gy / inv_m[i]) * vy) * h;
+    }
     if (alpha > 0) {
       // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
       const double dx = -alpha * std::abs(fx) * ((vx > 0) - (vx < 0));
@@ -247,6 +254,9 @@ void DemSystem::set_external_force(std::span<const double> external) {
                                 " values for " + std::to_string(particles_.size()) + " particles");
   }
   std::copy(external.begin(), external.end(), particles_.external_force.begin());
+  if (!has_body_forces_) {
+    has_body_forces_ = std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
+  }
   // At rest (t = 0) a^n is re-evaluated from scratch; inside a split step the internal forces at
   // x^{n+1} may already have been computed while the fluid worked.
   if (!in_split_step_ || !internal_forces_current_) compute_internal_forces();
@@ -267,7 +277,7 @@ double DemSystem::kinetic_energy() const {
 }
 
 double DemSystem::strain_energy() const {
-  return bonds_.strain_energy() + contacts_.strain_energy(particles_, settings_.contact);
+  return bonds_.strain_energy(particles_) + contacts_.strain_energy(particles_, settings_.contact);
 }
 
 }  // namespace rockcut::dem

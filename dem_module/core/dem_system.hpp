@@ -101,6 +101,7 @@ class DemSystem {
   bool in_split_step_ = false;
   bool internal_forces_current_ = false;  // force holds the internal forces at x^{n+1}
   bool has_pairs_ = false;                // any contact law, bonds or walls at all
+  bool has_body_forces_ = false;          // gravity or a non-zero external force: track its work
 };
 
 }  // namespace rockcut::dem

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "core/lattice.hpp"
+#include "core/clusters.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
 
@@ -11,39 +11,21 @@ namespace rockcut::dem {
 
 namespace {
 
-// Fields this module can put on the wire.
+// Fields this module can put on the wire: per particle, plus "breaks" (the bond breaks since the
+// last request, as arrays break_time_s, break_position, break_mode with 0 tensile, 1 shear).
 const std::vector<std::string_view> kProvided = {
-    wire::field::kPosition, wire::field::kVelocity, wire::field::kVelocityHalf,
-    wire::field::kDisplacement, wire::field::kRadius, wire::field::kForce,
-    wire::field::kExternalForce};
-
-Particles particles_from_scene(const rockcut::Dem& dem) {
-  switch (dem.particles_case()) {
-    case rockcut::Dem::kLattice: {
-      const rockcut::Lattice& l = dem.lattice();
-      LatticeSpec spec;
-      spec.nx = l.nx();
-      spec.ny = l.ny();
-      spec.spacing_m = l.spacing_m();
-      spec.radius_m = l.radius_m();
-      spec.origin_x_m = l.origin_m().x();
-      spec.origin_y_m = l.origin_m().y();
-      spec.density_kg_m3 = dem.density_kg_m3();
-      return make_lattice(spec);
-    }
-    case rockcut::Dem::PARTICLES_NOT_SET:
-      break;
-  }
-  throw std::invalid_argument("dem: the scene gives no particles (set dem.lattice)");
-}
+    wire::field::kPosition, wire::field::kVelocity,      wire::field::kVelocityHalf,
+    wire::field::kDisplacement, wire::field::kRadius,    wire::field::kForce,
+    wire::field::kExternalForce, "angular_velocity",     "damage",
+    "breaks"};
 
 }  // namespace
 
 std::string DemService::version() const { return ROCKCUT_VERSION; }
 
 DemSystem& DemService::system() {
-  if (!system_) throw std::logic_error("dem_module: request before Init");
-  return *system_;
+  if (!setup_.system) throw std::logic_error("dem_module: request before Init");
+  return *setup_.system;
 }
 
 void DemService::handle(const wire::Message& request, wire::Message& reply) {
@@ -61,45 +43,28 @@ void DemService::handle(const wire::Message& request, wire::Message& reply) {
 }
 
 void DemService::init(const wire::Init& init, wire::Message& reply) {
-  const rockcut::Dem& dem = init.scene().dem();
-  Particles particles = particles_from_scene(dem);
-  const double vx = dem.initial_velocity_m_s().x(), vy = dem.initial_velocity_m_s().y();
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    particles.velocity[2 * i] = vx;
-    particles.velocity[2 * i + 1] = vy;
-  }
-  DemSettings settings;
-  settings.gravity_x_m_s2 = dem.gravity_m_s2().x();
-  settings.gravity_y_m_s2 = dem.gravity_m_s2().y();
-  if (dem.has_prescribed_motion()) {
-    const rockcut::PrescribedMotion& m = dem.prescribed_motion();
-    PrescribedMotion motion;
-    motion.strain_rate_xx_per_s = m.strain_rate_xx_per_s();
-    motion.strain_rate_yy_per_s = m.strain_rate_yy_per_s();
-    motion.origin_x_m = m.origin_m().x();
-    motion.origin_y_m = m.origin_m().y();
-    motion.start_time_s = m.start_time_s();
-    if (m.has_end_time_s()) motion.end_time_s = m.end_time_s();
-    settings.prescribed_motion = motion;
-  }
-  system_ = std::make_unique<DemSystem>(std::move(particles), settings);
-
-  position_at_exchange_ = system_->particles().position;
+  setup_ = build_dem(init.scene());
+  position_at_exchange_ = setup_.system->particles().position;
 
   wire::InitReply* r = reply.envelope.mutable_init_reply();
   r->set_model("dem");
-  r->set_particle_count(system_->particles().size());
+  r->set_particle_count(setup_.system->particles().size());
   if (init.scene().has_fluid()) r->add_needs(std::string(wire::field::kForce));
   for (auto f : kProvided) r->add_provides(std::string(f));
-  // Free discs without contacts have no stability limit of their own; contact and bond springs
-  // (DESIGN section 5) add theirs here.
+  if (setup_.critical.dt_s > 0) {
+    wire::StabilityLimit* l = r->add_limits();
+    l->set_name("dem_springs");
+    l->set_dt_max_s(setup_.critical.dt_s);
+    l->set_detail(setup_.critical.detail);
+  }
+  if (!setup_.specimen_report.empty()) r->add_notes(setup_.specimen_report);
 }
 
 void DemService::subscribe(const wire::Subscribe& subscribe, wire::Message& reply) {
   system();
   for (const std::string& f : subscribe.fields()) {
-    if (std::find(kProvided.begin(), kProvided.end(), f) == kProvided.end()) {
-      throw std::invalid_argument("dem_module cannot provide the field '" + f + "'");
+    if (std::find(kProvided.begin(), kProvided.end(), f) == kProvided.end() || f == "breaks") {
+      throw std::invalid_argument("dem_module cannot provide the per-step field '" + f + "'");
     }
   }
   send_fields_.assign(subscribe.fields().begin(), subscribe.fields().end());
@@ -107,8 +72,9 @@ void DemService::subscribe(const wire::Subscribe& subscribe, wire::Message& repl
 }
 
 void DemService::after_reply() {
-  if (system_ && system_->in_split_step() && !system_->internal_forces_current()) {
-    system_->compute_internal_forces();
+  if (setup_.system && setup_.system->in_split_step() &&
+      !setup_.system->internal_forces_current()) {
+    setup_.system->compute_internal_forces();
   }
 }
 
@@ -144,21 +110,57 @@ void DemService::apply_forces(const wire::Message& request, wire::Message& reply
   report(reply);
 }
 
-void DemService::report(wire::Message& reply) const {
+void DemService::report(wire::Message& reply) {
+  const DemSystem& s = *setup_.system;
   wire::StepReport* r = reply.envelope.mutable_step_report();
-  r->set_time_s(system_->time_s());
-  r->set_step(system_->step_count());
-  (*r->mutable_scalars())["kinetic_energy_j"] = system_->kinetic_energy();
+  r->set_time_s(s.time_s());
+  r->set_step(s.step_count());
+  auto& out = *r->mutable_scalars();
+  out["kinetic_energy_j"] = s.kinetic_energy();
+  if (!s.bonds().size() && s.contacts().size() == 0 && s.walls().empty()) return;
+
+  const EnergyLedger& e = s.ledger();
+  out["strain_energy_j"] = s.strain_energy();
+  out["boundary_work_j"] = e.boundary_work_j;
+  out["external_work_j"] = e.external_work_j;
+  out["damping_j"] = e.damping_j;
+  out["friction_j"] = e.friction_j;
+  out["broken_bond_j"] = e.broken_bond_j;
+  out["bonds"] = static_cast<double>(s.bonds().size());
+  std::size_t tensile = 0;
+  for (const BondBreak& b : s.breaks()) tensile += b.mode == BreakMode::tensile;
+  out["breaks_tensile"] = static_cast<double>(tensile);
+  out["breaks_shear"] = static_cast<double>(s.breaks().size() - tensile);
+  if (s.bonds().size() > 0 || !s.breaks().empty()) {
+    const ChipStats chips = chip_stats(s.particles(), s.bonds());
+    out["chips"] = static_cast<double>(chips.chips);
+    out["chip_area_mean_m2"] = chips.mean_area_m2;
+  }
+  for (std::size_t b = 0; b < s.walls().bodies().size(); ++b) {
+    const WallBody& body = s.walls().bodies()[b];
+    if (setup_.tool.present && b == setup_.tool.body) {
+      out["tool_force_x_n_per_m"] = body.force_x;
+      out["tool_force_y_n_per_m"] = body.force_y;
+      const double tip_x = setup_.tool.tip_x0_m + body.offset_x;
+      out["tool_travel_m"] = tip_x - setup_.tool.specimen_left_m;
+      continue;
+    }
+    const std::string prefix = "wall_" + body.name + "_";
+    out[prefix + "force_x_n_per_m"] = body.force_x;
+    out[prefix + "force_y_n_per_m"] = body.force_y;
+    out[prefix + "offset_x_m"] = body.offset_x;
+    out[prefix + "offset_y_m"] = body.offset_y;
+  }
 }
 
 void DemService::frame(const wire::FrameRequest& request, wire::Message& reply) {
   system();
-  reply.envelope.mutable_frame()->set_time_s(system_->time_s());
+  reply.envelope.mutable_frame()->set_time_s(setup_.system->time_s());
   for (const std::string& f : request.fields()) add_field(f, reply);
 }
 
 void DemService::add_field(std::string_view field, wire::Message& reply) {
-  const Particles& p = system_->particles();
+  const Particles& p = setup_.system->particles();
   if (field == wire::field::kPosition) return reply.add_array(field, p.position, 2);
   if (field == wire::field::kVelocity || field == wire::field::kVelocityHalf) {
     return reply.add_array(field, p.velocity, 2);
@@ -166,12 +168,37 @@ void DemService::add_field(std::string_view field, wire::Message& reply) {
   if (field == wire::field::kRadius) return reply.add_array(field, p.radius, 1);
   if (field == wire::field::kForce) return reply.add_array(field, p.force, 2);
   if (field == wire::field::kExternalForce) return reply.add_array(field, p.external_force, 2);
+  if (field == "angular_velocity") return reply.add_array(field, p.angular_velocity, 1);
   if (field == wire::field::kDisplacement) {
     scratch_.resize(p.position.size());
     for (std::size_t k = 0; k < scratch_.size(); ++k) {
       scratch_[k] = p.position[k] - position_at_exchange_[k];
     }
     return reply.add_array(field, scratch_, 2);
+  }
+  if (field == "damage") {
+    // Paper figures 11-12: D = 1 - bonds / initial bonds (0 for a disc that never had a bond).
+    setup_.system->bonds().count_per_particle(p.size(), bond_count_);
+    scratch_.resize(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double initial = setup_.initial_bonds[i];
+      scratch_[i] = initial > 0 ? 1.0 - bond_count_[i] / initial : 0.0;
+    }
+    return reply.add_array(field, scratch_, 1);
+  }
+  if (field == "breaks") {
+    const auto& all = setup_.system->breaks();
+    std::vector<double> time, position, mode;
+    for (std::size_t k = breaks_sent_; k < all.size(); ++k) {
+      time.push_back(all[k].time_s);
+      position.insert(position.end(), {all[k].x_m, all[k].y_m});
+      mode.push_back(static_cast<double>(all[k].mode));
+    }
+    breaks_sent_ = all.size();
+    reply.add_array("break_time_s", time, 1);
+    reply.add_array("break_position", position, 2);
+    reply.add_array("break_mode", mode, 1);
+    return;
   }
   throw std::invalid_argument("dem_module cannot provide the field '" + std::string(field) + "'");
 }

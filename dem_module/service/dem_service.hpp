@@ -1,12 +1,13 @@
-// The DEM module's protocol handler: turns scene blocks into core structs at the edge, and answers
-// Advance / ApplyForces / FrameRequest with arrays copied straight from the particle arrays.
+// The DEM module's protocol handler: builds the DEM from the scene (service/dem_setup.hpp) and
+// answers Advance / ApplyForces / FrameRequest with arrays copied straight from the particle
+// arrays, and step reports with the tool force, breaks and the energy ledger.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "core/dem_system.hpp"
+#include "service/dem_setup.hpp"
 #include "wire/module_server.hpp"
 
 namespace rockcut::dem {
@@ -27,13 +28,15 @@ class DemService final : public wire::ModuleHandler {
   void apply_forces(const wire::Message& request, wire::Message& reply);
   void frame(const wire::FrameRequest& request, wire::Message& reply);
   void add_field(std::string_view field, wire::Message& reply);
-  void report(wire::Message& reply) const;
+  void report(wire::Message& reply);
   DemSystem& system();
 
-  std::unique_ptr<DemSystem> system_;
-  std::vector<std::string> send_fields_;  // per-step fields the fluid asked for
+  DemSetup setup_;
+  std::vector<std::string> send_fields_;      // per-step fields the fluid asked for
   std::vector<double> position_at_exchange_;  // for "displacement"
   std::vector<double> scratch_;
+  std::vector<std::uint32_t> bond_count_;
+  std::size_t breaks_sent_ = 0;               // breaks already handed out in frames
   double split_dt_s_ = 0.0;
 };
 

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rockcut::fluid {
@@ -48,6 +49,9 @@ class FluidModel {
                     std::span<double> force) = 0;
   /// Writes an output field named in provides() (1 value per particle for scalars).
   virtual void output(const std::string& field, std::vector<double>& values) const = 0;
+  /// Named scalars of the last step for the time series (FluidResult.scalars; the coupler
+  /// prefixes them with "fluid_"). Once per step, never per particle.
+  virtual void scalars(std::vector<std::pair<std::string, double>>& out) const { out.clear(); }
 };
 
 }  // namespace rockcut::fluid

@@ -78,7 +78,9 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
     k.displacement = request.array(wire::field::kDisplacement, 2);
   }
   m.step(s.dt_s(), s.time_s(), k, force_);
-  reply.envelope.mutable_fluid_result();
+  wire::FluidResult* result = reply.envelope.mutable_fluid_result();
+  m.scalars(scalars_);
+  for (const auto& [name, value] : scalars_) (*result->mutable_scalars())[name] = value;
   reply.add_array(wire::field::kForce, force_, 2);
 }
 

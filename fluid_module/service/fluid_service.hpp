@@ -30,6 +30,7 @@ class FluidService final : public wire::ModuleHandler {
   std::size_t particle_count_ = 0;
   std::vector<double> force_;
   std::vector<double> output_;
+  std::vector<std::pair<std::string, double>> scalars_;
 };
 
 }  // namespace rockcut::fluid

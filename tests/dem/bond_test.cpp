@@ -31,7 +31,7 @@ TEST(Bond, BreaksInTensionAtTn) {
   ASSERT_EQ(s.bonds().size(), 1u);
   double last_force = 0.0;
   while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
-    last_force = -s.bonds().normal_force(0);
+    last_force = -s.bonds().normal_force(0, s.particles());
     s.step(dt);
   }
   ASSERT_EQ(s.breaks().size(), 1u);
@@ -64,7 +64,7 @@ TEST(Bond, NeverBreaksInCompressionAndCarriesIt) {
   DemSystem s = driven_pair(-0.1, 0.0, law);
   for (int k = 0; k < 20000; ++k) s.step(1e-8);  // 20 um closer: 20 times T_n / k_n
   EXPECT_EQ(s.bonds().size(), 1u);
-  EXPECT_GT(s.bonds().normal_force(0), 5 * law.tensile_strength_n);
+  EXPECT_GT(s.bonds().normal_force(0, s.particles()), 5 * law.tensile_strength_n);
 }
 
 TEST(Bond, BrokenPairStillCollides) {

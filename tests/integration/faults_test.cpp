@@ -125,7 +125,7 @@ TEST(Faults, UnknownFluidModelIsRefusedListingTheOffer) {
                        dir, "coupler", &out, &err);
   EXPECT_EQ(code, 3);
   EXPECT_NE(err.find("lattice_boltzmann"), std::string::npos) << err;
-  EXPECT_NE(err.find("offers: prescribed_gradient"), std::string::npos) << err;
+  EXPECT_NE(err.find("offers: explicit, implicit, prescribed_gradient"), std::string::npos) << err;
 }
 
 class StopSignal : public ::testing::TestWithParam<int> {};

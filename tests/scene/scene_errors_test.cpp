@@ -117,7 +117,8 @@ TEST(SceneErrors, DisallowedChoice) {
                  "verification { analytical: \"uniform_aceleration\" }\n",
              "3:16",
              "verification.analytical = \"uniform_aceleration\" is not allowed; choose one of: "
-             "uniform_acceleration (did you mean \"uniform_acceleration\"?)");
+             "uniform_acceleration, terzaghi, gaussian_pulse, undrained_step (did you mean "
+             "\"uniform_acceleration\"?)");
 }
 
 TEST(SceneErrors, DisallowedChoiceInAList) {

@@ -1,0 +1,83 @@
+// DEM step throughput on the shared packing (../shared/bench/pack57k.txt, 57,636 discs): the
+// bonded block being cut by the chisel, with bond shear springs and break checks on, for 1 and 2
+// threads. Reports particle-steps per second, the figure ../shared/bench/README.md gives for
+// LAMMPS, LIGGGHTS and YADE on the same packing (k_n 1e10, k_t 2.5e10 N/m, friction 1, dt 2e-8 s).
+//
+// Run: build/bin/bench_dem [--packing PATH]   (default: ROCKCUT_SHARED_DIR/bench/pack57k.txt)
+#include <benchmark/benchmark.h>
+
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "core/dem_system.hpp"
+#include "core/packing_file.hpp"
+
+namespace {
+
+std::string g_packing = ROCKCUT_SHARED_DIR "/bench/pack57k.txt";
+
+// The packing as read once; each benchmark copies it.
+const rockcut::dem::Packing& packing() {
+  static const rockcut::dem::Packing p = rockcut::dem::read_packing_file(g_packing);
+  return p;
+}
+
+std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads) {
+  using namespace rockcut::dem;
+  const Packing& pk = packing();
+  Particles p;
+  double left = 1e300, top = -1e300;
+  for (std::size_t i = 0; i < pk.x_m.size(); ++i) {
+    p.add(pk.x_m[i], pk.y_m[i], pk.radius_m[i], 2800);
+    left = std::min(left, pk.x_m[i] - pk.radius_m[i]);
+    top = std::max(top, pk.y_m[i] + pk.radius_m[i]);
+  }
+  CellGrid grid;
+  // The README's bonding rule: every pair with a surface gap up to 10 um.
+  BondSet bonds = BondSet::install(p, {1e10, 2.5e10, 1e4, 2e4}, 10e-6, grid);
+  DemSettings s;
+  s.contact = {1e10, 2.5e10, 1.0};
+  s.local_damping = 0.7;
+  s.threads = threads;
+  WallSet walls;
+  // The chisel touching the block's left edge, 20 mm deep, moving at 1 m/s (60 deg cutting angle).
+  const double tip_x = left, tip_y = top - 0.02;
+  walls.add_body("tool", {tip_x, tip_y, tip_x - 0.03, tip_y + 0.052, tip_x - 0.06, tip_y + 0.005},
+                 true, 1.0, 0.0);
+  walls.add_body("floor", {-1.0, 0.0, 1.0, 0.0}, false, 0.0, 0.0);
+  return std::make_unique<DemSystem>(std::move(p), s, std::move(bonds), std::move(walls));
+}
+
+void BM_BondedBlockCutting(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  auto system = bonded_block_with_tool(threads);
+  const double dt = 2e-8;
+  for (int k = 0; k < 200; ++k) system->step(dt);  // warm up: first rebuilds, caches
+  const std::size_t n = system->particles().size();
+  std::uint64_t steps = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < 100; ++k) system->step(dt);
+    steps += 100;
+  }
+  state.counters["particle_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(steps) * n, benchmark::Counter::kIsRate);
+  state.counters["particles"] = static_cast<double>(n);
+  state.counters["bonds"] = static_cast<double>(system->bonds().size());
+  state.counters["breaks"] = static_cast<double>(system->breaks().size());
+  state.counters["rebuilds"] = static_cast<double>(system->neighbour_rebuilds());
+}
+BENCHMARK(BM_BondedBlockCutting)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
+    ->MinTime(3.0);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--packing") == 0) g_packing = argv[i + 1];
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  return 0;
+}

@@ -1,0 +1,168 @@
+// bench_fluid_step: one fluid step of the SP pore-pressure models (fluid_module/sp/) on the
+// 58,000-disc benchmark packing ../shared/bench/pack57k.txt (0.2 m x 0.1 m, radii 0.2-0.4 mm,
+// Table 1's h = 1.5 mm: ~21 neighbours per particle), single-threaded as the module runs.
+//
+//   explicit/static    forward Euler at its stability limit, particles at rest
+//   explicit/moving    the same while the block deforms (uniform strain rate 10 1/s): the
+//                      neighbour lists are rebuilt whenever a particle has moved half the skin
+//   implicit/x1, x20, x100   backward Euler at 1, 20 and 100 times the explicit limit
+//   neighbour_build    the cell-list rebuild alone;  geometry  the per-step SP geometry alone
+//
+// Counters: ns/particle = wall time of one step per particle; particle-steps/s; for the implicit
+// model cg_iterations = conjugate-gradient iterations per step.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sp/explicit_model.hpp"
+#include "sp/implicit_model.hpp"
+
+namespace {
+
+using namespace rockcut::fluid;
+
+struct Packing {
+  std::vector<double> position, radius;
+};
+
+// pack57k.txt if present (CI has ../shared beside the repository), else a jittered lattice of the
+// same size and density.
+const Packing& packing() {
+  static const Packing p = [] {
+    Packing out;
+    std::ifstream in(std::string(ROCKCUT_SOURCE_DIR) + "/../shared/bench/pack57k.txt");
+    std::string line;
+    while (in && std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream s(line);
+      double x, y, r;
+      if (s >> x >> y >> r) {
+        out.position.insert(out.position.end(), {x, y});
+        out.radius.push_back(r);
+      }
+    }
+    if (std::getenv("SORTED") && !out.radius.empty()) {
+      const std::size_t n = out.radius.size();
+      std::vector<std::size_t> idx(n);
+      for (std::size_t i = 0; i < n; ++i) idx[i] = i;
+      auto key = [&](std::size_t i) { return std::make_pair(static_cast<int>(out.position[2*i+1] / 0.0008), out.position[2*i]); };
+      std::sort(idx.begin(), idx.end(), [&](auto a, auto b) { return key(a) < key(b); });
+      Packing sorted;
+      for (auto i : idx) { sorted.position.insert(sorted.position.end(), {out.position[2*i], out.position[2*i+1]}); sorted.radius.push_back(out.radius[i]); }
+      out = sorted;
+    }
+    if (out.radius.empty()) {
+      std::mt19937_64 rng(1);
+      const double s = 0.000589;  // mean spacing of pack57k
+      for (int j = 0; j < 170; ++j) {
+        for (int i = 0; i < 340; ++i) {
+          const double jx = (static_cast<double>(rng() >> 11) * 0x1.0p-53 - 0.5) * 0.6 * s;
+          const double jy = (static_cast<double>(rng() >> 11) * 0x1.0p-53 - 0.5) * 0.6 * s;
+          out.position.insert(out.position.end(), {i * s + jx, j * s + jy});
+          out.radius.push_back(0.0003);
+        }
+      }
+    }
+    return out;
+  }();
+  return p;
+}
+
+sp::SpParams params() {
+  sp::SpParams p;  // Table 1
+  p.pulse_amplitude_pa = 1e5;
+  p.pulse_x_m = 0.1;
+  p.pulse_y_m = 0.05;
+  p.pulse_sigma_m = 0.01;
+  p.sealed = {true, true, true, false};  // the specimen in its box, open at the top
+  return p;
+}
+
+void run(benchmark::State& state, sp::PorePressureModel& model, double dt, double strain_rate) {
+  const Packing& p = packing();
+  const std::size_t n = p.radius.size();
+  std::vector<double> x = p.position, d(2 * n, 0.0), v(2 * n, 0.0), force(2 * n);
+  model.initialise({p.radius, p.position});
+  model.step(0.0, 0.0, {x, v, d}, force);
+  double t = 0.0;
+  const std::uint64_t builds0 = model.neighbour_list().builds();
+  for (auto _ : state) {
+    if (strain_rate != 0.0) {
+      for (std::size_t i = 0; i < n; ++i) {  // v = diag(e, -e) (x - centre): isochoric shear
+        d[2 * i] = dt * strain_rate * (x[2 * i] - 0.1);
+        d[2 * i + 1] = -dt * strain_rate * (x[2 * i + 1] - 0.05);
+        x[2 * i] += d[2 * i];
+        x[2 * i + 1] += d[2 * i + 1];
+      }
+    }
+    t += dt;
+    model.step(dt, t, {x, v, d}, force);
+    benchmark::DoNotOptimize(force.data());
+  }
+  state.counters["particles"] = static_cast<double>(n);
+  state.counters["ns/particle"] = benchmark::Counter(
+      static_cast<double>(n) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["particle-steps/s"] =
+      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rebuilds/step"] =
+      static_cast<double>(model.neighbour_list().builds() - builds0) / state.iterations();
+  state.counters["pairs/particle"] =
+      static_cast<double>(model.neighbour_list().pairs()) / static_cast<double>(n);
+}
+
+void explicit_static(benchmark::State& state) {
+  sp::ExplicitModel m(params());
+  run(state, m, m.dt_max_s(), 0.0);
+}
+
+void explicit_moving(benchmark::State& state) {
+  sp::ExplicitModel m(params());
+  run(state, m, m.dt_max_s(), 10.0);
+}
+
+void implicit_times(benchmark::State& state) {
+  sp::ImplicitModel m(params());
+  const double dt = static_cast<double>(state.range(0)) * sp::ExplicitModel(params()).dt_max_s();
+  run(state, m, dt, 0.0);
+  state.counters["cg_iterations"] = m.last_solve().iterations;
+}
+
+void neighbour_build(benchmark::State& state) {
+  const Packing& p = packing();
+  sp::NeighbourList list(0.0015, 0.1);
+  for (auto _ : state) list.build(p.position);
+  state.counters["ns/particle"] = benchmark::Counter(
+      static_cast<double>(p.radius.size()) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void geometry(benchmark::State& state) {
+  const Packing& p = packing();
+  sp::NeighbourList list(0.0015, 0.1);
+  list.build(p.position);
+  sp::Geometry geo;
+  const std::vector<double> lucy(p.radius.size(), 3e-7);
+  const sp::WendlandC2 kernel(0.0015);
+  for (auto _ : state) sp::update_geometry(list, kernel, p.position, lucy, 3, geo);
+  state.counters["ns/particle"] = benchmark::Counter(
+      static_cast<double>(p.radius.size()) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+BENCHMARK(explicit_static)->Name("explicit/static")->Unit(benchmark::kMillisecond);
+BENCHMARK(explicit_moving)->Name("explicit/moving")->Unit(benchmark::kMillisecond);
+BENCHMARK(implicit_times)->Name("implicit/x")->Arg(1)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(neighbour_build)->Unit(benchmark::kMillisecond);
+BENCHMARK(geometry)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

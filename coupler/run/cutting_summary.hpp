@@ -1,0 +1,39 @@
+// The headline numbers of a cutting run, from the DEM's step reports: mean tool forces over the
+// steady part of the cut, break counts by mode, and chips.
+//
+// Steady part: the samples taken after the tool tip has travelled `dem.tool.steady_after_m` into
+// the specimen (default two cutting depths: by then the first chip has formed and the force
+// fluctuates about a stationary mean) until the end of the run.
+// Signs: `force_horizontal_mean_n_per_m` is the force resisting the cut (-F_x of the rock on the
+// tool), `force_vertical_mean_n_per_m` the vertical force of the rock on the tool, positive
+// upwards (the paper's figure 8 convention: the tool must be pushed down into the rock).
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <string>
+#include <vector>
+
+#include "output/summary_json.hpp"
+#include "rockcut/scene.pb.h"
+
+namespace rockcut::coupler {
+
+class CuttingSummary {
+ public:
+  explicit CuttingSummary(const rockcut::Scene& scene);
+  bool active() const { return active_; }
+  /// One time-series sample of the DEM's scalars (sorted by name).
+  void observe(const std::vector<std::pair<std::string, double>>& scalars);
+  void write(Summary& summary) const;
+
+ private:
+  bool active_ = false;
+  double steady_after_m_ = 0.0;
+  double width_m_ = 0.0;
+  double sum_x_ = 0.0, sum_y_ = 0.0;
+  std::uint64_t samples_ = 0;
+  std::vector<std::pair<std::string, double>> last_;
+};
+
+}  // namespace rockcut::coupler

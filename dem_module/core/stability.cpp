@@ -1,0 +1,37 @@
+#include "core/stability.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace rockcut::dem {
+
+CriticalStep critical_step(const Particles& p, double kn, double ks) {
+  CriticalStep best;
+  if (kn <= 0 && ks <= 0) return best;
+  double dt = 1e300;
+  std::size_t which = 0;
+  const char* mode = "";
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double m = 1.0 / p.inv_mass[i], inertia = 1.0 / p.inv_inertia[i], r = p.radius[i];
+    const double candidates[3] = {kn > 0 ? std::sqrt(m / kn) : 1e300,
+                                  ks > 0 ? std::sqrt(m / ks) : 1e300,
+                                  ks > 0 ? std::sqrt(inertia / (ks * r * r)) : 1e300};
+    const char* names[3] = {"sqrt(m/k_n)", "sqrt(m/k_s)", "sqrt(I/(k_s r^2))"};
+    for (int c = 0; c < 3; ++c) {
+      if (candidates[c] < dt) {
+        dt = candidates[c];
+        which = i;
+        mode = names[c];
+      }
+    }
+  }
+  if (p.size() == 0) return best;
+  char detail[160];
+  std::snprintf(detail, sizeof detail, "%s of disc %zu (r = %.3g m), k_n %.3g, k_s %.3g N/m per m",
+                mode, which, p.radius[which], kn, ks);
+  best.dt_s = dt;
+  best.detail = detail;
+  return best;
+}
+
+}  // namespace rockcut::dem

@@ -1,0 +1,204 @@
+#include "service/dem_setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <stdexcept>
+
+#include "core/lattice.hpp"
+#include "core/packing_file.hpp"
+#include "core/specimen_generator.hpp"
+
+namespace rockcut::dem {
+
+namespace {
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+Particles from_packing(const Packing& packing, double density) {
+  Particles p;
+  for (std::size_t i = 0; i < packing.x_m.size(); ++i) {
+    p.add(packing.x_m[i], packing.y_m[i], packing.radius_m[i], density);
+  }
+  return p;
+}
+
+Particles specimen_particles(const rockcut::Specimen& s, double density, std::string& report) {
+  if (s.radius_min_m() > s.radius_max_m()) {
+    throw std::invalid_argument("dem.specimen.radius_min_m = " + num(s.radius_min_m()) +
+                                " is larger than dem.specimen.radius_max_m = " +
+                                num(s.radius_max_m()));
+  }
+  PackingSpec spec;
+  spec.radius_min_m = s.radius_min_m();
+  spec.radius_max_m = s.radius_max_m();
+  spec.seed = s.seed();
+  if (s.shape() == "circle") {
+    if (!s.has_diameter_m()) {
+      throw std::invalid_argument("dem.specimen.diameter_m is required for shape \"circle\"");
+    }
+    spec.region.shape = PackingRegion::Shape::circle;
+    spec.region.radius_m = 0.5 * s.diameter_m();
+    spec.region.center_x_m = s.origin_m().x() + spec.region.radius_m;
+    spec.region.center_y_m = s.origin_m().y() + spec.region.radius_m;
+  } else {
+    if (!s.has_width_m() || !s.has_height_m()) {
+      throw std::invalid_argument(
+          "dem.specimen.width_m and dem.specimen.height_m are required for shape \"rectangle\"");
+    }
+    spec.region.shape = PackingRegion::Shape::rectangle;
+    spec.region.width_m = s.width_m();
+    spec.region.height_m = s.height_m();
+    spec.region.center_x_m = s.origin_m().x() + 0.5 * s.width_m();
+    spec.region.center_y_m = s.origin_m().y() + 0.5 * s.height_m();
+  }
+  const Packing packing = generate_packing(spec);
+  const PackingStats stats = packing_stats(packing, spec.region, 1e-7);
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "specimen: %zu discs, porosity %.4f, mean coordination %.3f (gap <= 1e-7 m)",
+                packing.x_m.size(), stats.porosity, stats.mean_coordination);
+  report = line;
+  return from_packing(packing, density);
+}
+
+Particles particles_from_scene(const rockcut::Dem& dem, std::string& report) {
+  switch (dem.particles_case()) {
+    case rockcut::Dem::kLattice: {
+      const rockcut::Lattice& l = dem.lattice();
+      LatticeSpec spec;
+      spec.nx = l.nx();
+      spec.ny = l.ny();
+      spec.spacing_m = l.spacing_m();
+      spec.radius_m = l.radius_m();
+      spec.origin_x_m = l.origin_m().x();
+      spec.origin_y_m = l.origin_m().y();
+      spec.density_kg_m3 = dem.density_kg_m3();
+      return make_lattice(spec);
+    }
+    case rockcut::Dem::kPackingFile:
+      // The coupler makes a relative path absolute (relative to the scene file) before Init.
+      return from_packing(read_packing_file(dem.packing_file().path()), dem.density_kg_m3());
+    case rockcut::Dem::kSpecimen:
+      return specimen_particles(dem.specimen(), dem.density_kg_m3(), report);
+    case rockcut::Dem::PARTICLES_NOT_SET:
+      break;
+  }
+  throw std::invalid_argument(
+      "dem: the scene gives no particles (set dem.lattice, dem.specimen or dem.packing_file)");
+}
+
+// Places the chisel at the specimen's upper left: tip `cutting_depth_m` below the top, a gap to
+// the left of the leftmost disc.
+ToolPlacement add_tool(const rockcut::Tool& t, const Particles& p, WallSet& walls) {
+  double left = 1e300, top = -1e300, bottom = 1e300;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    left = std::min(left, p.position[2 * i] - p.radius[i]);
+    top = std::max(top, p.position[2 * i + 1] + p.radius[i]);
+    bottom = std::min(bottom, p.position[2 * i + 1] - p.radius[i]);
+  }
+  if (t.cutting_depth_m() >= top - bottom) {
+    throw std::invalid_argument("dem.tool.cutting_depth_m = " + num(t.cutting_depth_m()) +
+                                " puts the tool tip outside the specimen (height " +
+                                num(top - bottom) + " m)");
+  }
+  ToolPlacement tool;
+  tool.present = true;
+  tool.tip_x0_m = left - t.start_gap_m();
+  tool.tip_y_m = top - t.cutting_depth_m();
+  tool.velocity_m_s = t.velocity_m_s();
+  tool.width_m = t.width_m();
+  tool.specimen_left_m = left;
+  tool.steady_after_m = t.steady_after_m() > 0 ? t.steady_after_m() : 2.0 * t.cutting_depth_m();
+  const double deg = std::numbers::pi / 180.0;
+  const double face = t.face_length_m() > 0 ? t.face_length_m() : 3.0 * t.cutting_depth_m();
+  const double a = t.cutting_angle_deg() * deg, b = t.clearance_angle_deg() * deg;
+  // Triangle: tip, top of the cutting face (leaning back at the cutting angle), end of the
+  // clearance face (rising back at the clearance angle).
+  const std::vector<double> vertices = {
+      tool.tip_x0_m, tool.tip_y_m,
+      tool.tip_x0_m - face * std::cos(a), tool.tip_y_m + face * std::sin(a),
+      tool.tip_x0_m - face * std::cos(b), tool.tip_y_m + face * std::sin(b)};
+  tool.body = walls.add_body("tool", vertices, true, t.velocity_m_s(), 0.0);
+  return tool;
+}
+
+}  // namespace
+
+DemSetup build_dem(const rockcut::Scene& scene) {
+  const rockcut::Dem& dem = scene.dem();
+  DemSetup setup;
+  Particles particles = particles_from_scene(dem, setup.specimen_report);
+  if (particles.size() == 0) throw std::invalid_argument("dem: the scene makes no particles");
+  const double vx = dem.initial_velocity_m_s().x(), vy = dem.initial_velocity_m_s().y();
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    particles.velocity[2 * i] = vx;
+    particles.velocity[2 * i + 1] = vy;
+  }
+
+  DemSettings settings;
+  settings.gravity_x_m_s2 = dem.gravity_m_s2().x();
+  settings.gravity_y_m_s2 = dem.gravity_m_s2().y();
+  settings.local_damping = dem.local_damping();
+  settings.skin_m = dem.skin_m();
+  settings.threads = static_cast<int>(dem.threads());
+  if (dem.has_contact()) {
+    settings.contact = {dem.contact().normal_stiffness_pa(), dem.contact().shear_stiffness_pa(),
+                        dem.contact().friction()};
+  }
+  if (dem.has_prescribed_motion()) {
+    const rockcut::PrescribedMotion& m = dem.prescribed_motion();
+    PrescribedMotion motion;
+    motion.strain_rate_xx_per_s = m.strain_rate_xx_per_s();
+    motion.strain_rate_yy_per_s = m.strain_rate_yy_per_s();
+    motion.origin_x_m = m.origin_m().x();
+    motion.origin_y_m = m.origin_m().y();
+    motion.start_time_s = m.start_time_s();
+    if (m.has_end_time_s()) motion.end_time_s = m.end_time_s();
+    settings.prescribed_motion = motion;
+  }
+
+  BondSet bonds;
+  double kn = settings.contact.normal_stiffness_n_m, ks = settings.contact.shear_stiffness_n_m;
+  if (dem.has_bonds()) {
+    const rockcut::BondParameters& b = dem.bonds();
+    const BondLaw law{b.normal_stiffness_pa(), b.shear_stiffness_pa(),
+                      b.tensile_strength_n_per_m(), b.shear_strength_n_per_m()};
+    CellGrid grid;
+    bonds = BondSet::install(particles, law, b.gap_tolerance_m(), grid);
+    kn = std::max(kn, law.normal_stiffness_n_m);
+    ks = std::max(ks, law.shear_stiffness_n_m);
+  }
+  bonds.count_per_particle(particles.size(), setup.initial_bonds);
+
+  WallSet walls;
+  for (const rockcut::Wall& w : dem.walls()) {
+    if (w.vertex_m_size() < 2) {
+      throw std::invalid_argument("dem.walls \"" + w.name() + "\": give at least two vertex_m");
+    }
+    std::vector<double> vertices;
+    for (const rockcut::Vec2& v : w.vertex_m()) vertices.insert(vertices.end(), {v.x(), v.y()});
+    walls.add_body(w.name(), vertices, w.closed(), w.velocity_m_s().x(), w.velocity_m_s().y());
+  }
+  if (dem.has_tool()) {
+    if (!dem.has_contact()) {
+      throw std::invalid_argument("dem.tool needs dem.contact: the tool pushes discs by contact");
+    }
+    setup.tool = add_tool(dem.tool(), particles, walls);
+  }
+  if (!walls.empty() && !dem.has_contact()) {
+    throw std::invalid_argument("dem.walls need dem.contact: walls push discs by contact");
+  }
+  setup.critical = critical_step(particles, dem.has_contact() || dem.has_bonds() ? kn : 0.0,
+                                 dem.has_contact() || dem.has_bonds() ? ks : 0.0);
+  setup.system = std::make_unique<DemSystem>(std::move(particles), settings, std::move(bonds),
+                                             std::move(walls));
+  return setup;
+}
+
+}  // namespace rockcut::dem

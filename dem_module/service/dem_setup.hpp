@@ -1,0 +1,38 @@
+// From scene to core: the DEM's edge, where scene blocks become plain structs and cross-field
+// checks name the offending field. Physics classes never see the scene.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/dem_system.hpp"
+#include "core/stability.hpp"
+#include "rockcut/scene.pb.h"
+
+namespace rockcut::dem {
+
+/// The chisel as placed in the specimen.
+struct ToolPlacement {
+  bool present = false;
+  std::uint32_t body = 0;
+  double tip_x0_m = 0.0, tip_y_m = 0.0;  ///< tip at t = 0
+  double velocity_m_s = 0.0;
+  double width_m = 0.0;
+  double specimen_left_m = 0.0;   ///< where the cut starts
+  double steady_after_m = 0.0;    ///< travel into the specimen after which the cut is steady
+};
+
+struct DemSetup {
+  std::unique_ptr<DemSystem> system;
+  ToolPlacement tool;
+  CriticalStep critical;                      ///< none (dt 0) without springs
+  std::vector<std::uint32_t> initial_bonds;   ///< per particle, for damage
+  std::string specimen_report;                ///< porosity, coordination, ... for the log
+};
+
+/// Builds the DEM of `scene`. Throws std::invalid_argument naming the field for inconsistent input
+/// (radius_min_m > radius_max_m, a tool outside the specimen, ...).
+DemSetup build_dem(const rockcut::Scene& scene);
+
+}  // namespace rockcut::dem

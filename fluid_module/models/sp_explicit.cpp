@@ -1,0 +1,11 @@
+// Registers `explicit`: the paper's pore-pressure model with forward Euler (sp/explicit_model.hpp).
+#include "models/registry.hpp"
+#include "sp/explicit_model.hpp"
+
+namespace rockcut::fluid {
+namespace {
+const bool registered = register_model("explicit", [](const rockcut::Scene& scene) {
+  return std::make_unique<sp::ExplicitModel>(sp::sp_params_from_scene(scene));
+});
+}  // namespace
+}  // namespace rockcut::fluid

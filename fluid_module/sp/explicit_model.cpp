@@ -1,0 +1,50 @@
+#include "sp/explicit_model.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "sp/format.hpp"
+#include "sp/operators.hpp"
+
+namespace rockcut::fluid::sp {
+
+ExplicitModel::ExplicitModel(const SpParams& params)
+    : PorePressureModel(params),
+      dt_max_s_(kExplicitStabilityC * params.h_m * params.h_m / diffusivity_m2_s_) {}
+
+std::vector<StabilityLimit> ExplicitModel::limits() const {
+  return {{"explicit_diffusion", dt_max_s_,
+           "C h^2 / D with C = " + fmt(kExplicitStabilityC) + ", h = " + fmt(params_.h_m) +
+               " m, D = M kappa / mu = " + fmt(diffusivity_m2_s_) + " m^2/s"}};
+}
+
+void ExplicitModel::advance(double dt_s) {
+  // A relative margin of 1e-9 absorbs the round-off of N * dt computed by the coupler.
+  if (dt_s > dt_max_s_ * (1.0 + 1e-9)) {
+    throw std::invalid_argument(
+        "explicit: the fluid step " + fmt(dt_s) + " s exceeds the stability limit C h^2 / D = " +
+        fmt(dt_max_s_) + " s (C = " + fmt(kExplicitStabilityC) + ", h = " + fmt(params_.h_m) +
+        " m, D = " + fmt(diffusivity_m2_s_) + " m^2/s) by " + fmt(dt_s / dt_max_s_) +
+        "x; shorten the fluid step (time.dt_s, coupling.interval) or use fluid.model: "
+        "\"implicit\"");
+  }
+  laplacian(list_, geo_, pressure_, work_);  // from p^n everywhere before any update
+  const double p_min = params_.p_min_pa;
+  const std::size_t n = pressure_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (boundary_[i] == Boundary::drained) {
+      pressure_[i] = params_.p_hydro_pa;  // section 3.3: Dirichlet where the surface meets water
+      continue;
+    }
+    double rate = diffusivity_m2_s_ * work_[i] + source_[i];  // eq. 14
+    if (params_.cavitation) {
+      // Eq. 22: at the clamp only increases pass; below p_min the pressure is held at p_min.
+      if (pressure_[i] <= p_min) rate = std::max(rate, 0.0);
+      pressure_[i] = std::max(pressure_[i] + dt_s * rate, p_min);
+    } else {
+      pressure_[i] += dt_s * rate;
+    }
+  }
+}
+
+}  // namespace rockcut::fluid::sp

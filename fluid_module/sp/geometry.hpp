@@ -1,0 +1,60 @@
+// Per-step SP geometry on the current positions: kernel values per pair, SP volumes, the CSPM
+// correction matrices and Lucy's div r (paper sections 3.2-3.3). Everything the operators
+// (sp/operators.hpp) and the models need is computed here once per step, pair by pair in the CSR
+// order of the neighbour list.
+//
+// Per pair only W and F are stored (16 bytes); the passes recompute x_j - x_i from the positions,
+// which costs two loads of a cache line they read anyway. Storing the differences too doubled the
+// memory traffic of every pass, and the passes are bound by it (58,000 particles: 1.3 million
+// listed pairs).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sp/kernel.hpp"
+#include "sp/neighbours.hpp"
+
+namespace rockcut::fluid::sp {
+
+/// How the CSPM gradient of a particle is corrected (see correction_matrices in geometry.cpp).
+enum class Correction : std::uint8_t {
+  full = 0,       ///< L_i is well conditioned: the full 2x2 inverse
+  projected = 1,  ///< L_i is (nearly) rank one, e.g. a chain of particles: 1D along its axis
+  none = 2,       ///< no neighbour in the support: zero gradient
+};
+
+struct Geometry {
+  std::vector<double> position;  ///< the positions of this step [m], interleaved x, y
+  // Per pair, in the CSR order of NeighbourList (pairs beyond h have w = f = 0).
+  std::vector<double> w;       ///< W_ij [1/m^2]
+  std::vector<double> f;       ///< F_ij = W'(r_ij) / r_ij [1/m^4], so grad_i W_ij = F_ij (x_i - x_j)
+  // Per particle.
+  std::vector<double> volume;  ///< SP volume V_i [m^2]
+  /// The inverse of L_i = sum_j V_j (x_j - x_i) (x) grad_i W_ij (symmetric, 3 per particle:
+  /// xx, xy, yy), or its safe replacement (see `correction`).
+  std::vector<double> l_inverse;
+  std::vector<Correction> correction;
+  std::vector<double> div_r;   ///< Lucy's uncorrected div r (eq. 24) [1]
+  std::vector<double> scratch; ///< per particle, for the volume iterations
+
+  std::size_t particles() const { return volume.size(); }
+};
+
+/// The eigenvalue ratio below which L_i counts as ill-conditioned and the gradient is taken along
+/// its dominant axis only. Inside a packing L_i is close to the identity and at a straight
+/// surface close to I / 2 (ratio 1); a chain of particles or a strip one or two particles wide
+/// gives a ratio near 0, where the full inverse would amplify noise across the chain 1 / ratio
+/// times. 0.05 bounds that amplification at 20.
+inline constexpr double kMinEigenRatio = 0.05;
+
+/// Recomputes `geo` for `position` (interleaved x, y [m]) with the lists of `list` (current for
+/// these positions). SP volumes: V_i = 1 / sum_j W_ij (self term included), then
+/// `volume_iterations` times V_i <- V_i / sum_j V_j W_ij. `lucy_volume` [m^2] are the volumes
+/// m_j / rho_j of eq. 24 (constant per particle).
+void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
+                     std::span<const double> position, std::span<const double> lucy_volume,
+                     unsigned volume_iterations, Geometry& geo);
+
+}  // namespace rockcut::fluid::sp

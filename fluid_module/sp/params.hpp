@@ -1,0 +1,45 @@
+// The parameters of the SP pore-pressure models as plain values. Only params.cpp reads the scene;
+// the physics takes these.
+#pragma once
+
+#include <array>
+#include <string>
+
+namespace rockcut {
+class Scene;
+}
+
+namespace rockcut::fluid::sp {
+
+enum class StrainFrom { displacement, velocity_half };
+
+struct SpParams {
+  double h_m = 0.0015;                 ///< kernel support (smoothing length)
+  double alpha = 0.5;                  ///< Biot coefficient
+  double bulk_modulus_pa = 2e9;        ///< M
+  double permeability_m2 = 1e-14;      ///< kappa
+  double viscosity_pa_s = 1e-3;        ///< mu
+  double p_hydro_pa = 101325.0;        ///< p_atm + rho_w g H
+  double surface_div_r = 1.5;          ///< eq. 24 threshold
+  std::array<bool, 4> sealed{};        ///< left, right, bottom, top (Sides order)
+  bool cavitation = true;
+  double p_min_pa = 2340.0;            ///< eq. 22
+  StrainFrom strain_from = StrainFrom::displacement;
+  unsigned volume_iterations = 3;
+  double skin = 0.1;                   ///< neighbour skin, fraction of h
+  // Implicit model.
+  double solver_tolerance = 1e-8;
+  unsigned solver_max_iterations = 2000;
+  double max_diffusion_number = 1.0;
+  // Initial Gaussian pulse on top of p_hydro (amplitude 0: none).
+  double pulse_amplitude_pa = 0.0, pulse_x_m = 0.0, pulse_y_m = 0.0, pulse_sigma_m = 1.0;
+
+  /// Pore pressure diffusivity D = M kappa / mu [m^2/s] (eq. 14 with uniform kappa).
+  double diffusivity_m2_s() const { return bulk_modulus_pa * permeability_m2 / viscosity_pa_s; }
+};
+
+/// Reads scene.fluid and scene.water_depth_m. Ranges are checked by the schema; cross-field
+/// problems throw std::invalid_argument naming the fields.
+SpParams sp_params_from_scene(const rockcut::Scene& scene);
+
+}  // namespace rockcut::fluid::sp

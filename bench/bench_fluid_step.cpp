@@ -3,13 +3,15 @@
 // Table 1's h = 1.5 mm: ~21 neighbours per particle), single-threaded as the module runs.
 //
 //   explicit/static    forward Euler at its stability limit, particles at rest
-//   explicit/moving    the same while the block deforms (uniform strain rate 10 1/s): the
+//   explicit/moving    the same while the block deforms (isochoric shear at 10 1/s): the
 //                      neighbour lists are rebuilt whenever a particle has moved half the skin
-//   implicit/x1, x20, x100   backward Euler at 1, 20 and 100 times the explicit limit
+//   implicit           backward Euler at 1, 20 and 100 times the explicit limit
 //   neighbour_build    the cell-list rebuild alone;  geometry  the per-step SP geometry alone
+// each with the particles numbered cell by cell (cell_ordered:1, as the specimen generator numbers
+// them) and in pack57k's own random order (cell_ordered:0).
 //
-// Counters: ns/particle = wall time of one step per particle; particle-steps/s; for the implicit
-// model cg_iterations = conjugate-gradient iterations per step.
+// Counters: time/particle = wall time of one step per particle; particle-steps/s; for the
+// implicit model cg_iterations = conjugate-gradient iterations per step.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -33,11 +35,12 @@ struct Packing {
 };
 
 // pack57k.txt if present (CI has ../shared beside the repository), else a jittered lattice of the
-// same size and density.
-const Packing& packing() {
-  static const Packing p = [] {
+// same size and density. pack57k lists its discs in random order; `cell_ordered` renumbers them
+// row by row of 0.8 mm cells, the order in which the DEM's specimen generator numbers its discs.
+Packing read_packing() {
+  {
     Packing out;
-    std::ifstream in(std::string(ROCKCUT_SOURCE_DIR) + "/../shared/bench/pack57k.txt");
+    std::ifstream in(std::string(ROCKCUT_SHARED_DIR) + "/bench/pack57k.txt");
     std::string line;
     while (in && std::getline(in, line)) {
       if (line.empty() || line[0] == '#') continue;
@@ -47,16 +50,6 @@ const Packing& packing() {
         out.position.insert(out.position.end(), {x, y});
         out.radius.push_back(r);
       }
-    }
-    if (std::getenv("SORTED") && !out.radius.empty()) {
-      const std::size_t n = out.radius.size();
-      std::vector<std::size_t> idx(n);
-      for (std::size_t i = 0; i < n; ++i) idx[i] = i;
-      auto key = [&](std::size_t i) { return std::make_pair(static_cast<int>(out.position[2*i+1] / 0.0008), out.position[2*i]); };
-      std::sort(idx.begin(), idx.end(), [&](auto a, auto b) { return key(a) < key(b); });
-      Packing sorted;
-      for (auto i : idx) { sorted.position.insert(sorted.position.end(), {out.position[2*i], out.position[2*i+1]}); sorted.radius.push_back(out.radius[i]); }
-      out = sorted;
     }
     if (out.radius.empty()) {
       std::mt19937_64 rng(1);
@@ -71,8 +64,29 @@ const Packing& packing() {
       }
     }
     return out;
-  }();
-  return p;
+  }
+}
+
+Packing cell_ordered(const Packing& in) {
+  const std::size_t n = in.radius.size();
+  std::vector<std::size_t> idx(n);
+  for (std::size_t i = 0; i < n; ++i) idx[i] = i;
+  auto key = [&](std::size_t i) {
+    return std::make_pair(static_cast<long>(in.position[2 * i + 1] / 0.0008), in.position[2 * i]);
+  };
+  std::stable_sort(idx.begin(), idx.end(), [&](auto a, auto b) { return key(a) < key(b); });
+  Packing out;
+  for (std::size_t i : idx) {
+    out.position.insert(out.position.end(), {in.position[2 * i], in.position[2 * i + 1]});
+    out.radius.push_back(in.radius[i]);
+  }
+  return out;
+}
+
+const Packing& packing(bool ordered) {
+  static const Packing random = read_packing();
+  static const Packing cells = cell_ordered(random);
+  return ordered ? cells : random;
 }
 
 sp::SpParams params() {
@@ -85,8 +99,19 @@ sp::SpParams params() {
   return p;
 }
 
+// Counters common to every benchmark: the particle count and the cost per particle.
+void per_particle(benchmark::State& state, std::size_t n) {
+  state.counters["particles"] = static_cast<double>(n);
+  state.counters["time/particle"] = benchmark::Counter(
+      static_cast<double>(n),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["particle-steps/s"] =
+      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+// state.range(0): 1 for the cell-ordered numbering, 0 for pack57k's own (random) order.
 void run(benchmark::State& state, sp::PorePressureModel& model, double dt, double strain_rate) {
-  const Packing& p = packing();
+  const Packing& p = packing(state.range(0) != 0);
   const std::size_t n = p.radius.size();
   std::vector<double> x = p.position, d(2 * n, 0.0), v(2 * n, 0.0), force(2 * n);
   model.initialise({p.radius, p.position});
@@ -106,12 +131,7 @@ void run(benchmark::State& state, sp::PorePressureModel& model, double dt, doubl
     model.step(dt, t, {x, v, d}, force);
     benchmark::DoNotOptimize(force.data());
   }
-  state.counters["particles"] = static_cast<double>(n);
-  state.counters["ns/particle"] = benchmark::Counter(
-      static_cast<double>(n) * 1e-9,
-      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  state.counters["particle-steps/s"] =
-      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate);
+  per_particle(state, n);
   state.counters["rebuilds/step"] =
       static_cast<double>(model.neighbour_list().builds() - builds0) / state.iterations();
   state.counters["pairs/particle"] =
@@ -128,40 +148,40 @@ void explicit_moving(benchmark::State& state) {
   run(state, m, m.dt_max_s(), 10.0);
 }
 
-void implicit_times(benchmark::State& state) {
+// state.range(1): the step in multiples of the explicit limit.
+void implicit_step(benchmark::State& state) {
   sp::ImplicitModel m(params());
-  const double dt = static_cast<double>(state.range(0)) * sp::ExplicitModel(params()).dt_max_s();
+  const double dt = static_cast<double>(state.range(1)) * sp::ExplicitModel(params()).dt_max_s();
   run(state, m, dt, 0.0);
   state.counters["cg_iterations"] = m.last_solve().iterations;
 }
 
 void neighbour_build(benchmark::State& state) {
-  const Packing& p = packing();
+  const Packing& p = packing(state.range(0) != 0);
   sp::NeighbourList list(0.0015, 0.1);
   for (auto _ : state) list.build(p.position);
-  state.counters["ns/particle"] = benchmark::Counter(
-      static_cast<double>(p.radius.size()) * 1e-9,
-      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  per_particle(state, p.radius.size());
 }
 
 void geometry(benchmark::State& state) {
-  const Packing& p = packing();
+  const Packing& p = packing(state.range(0) != 0);
   sp::NeighbourList list(0.0015, 0.1);
   list.build(p.position);
   sp::Geometry geo;
   const std::vector<double> lucy(p.radius.size(), 3e-7);
   const sp::WendlandC2 kernel(0.0015);
   for (auto _ : state) sp::update_geometry(list, kernel, p.position, lucy, 3, geo);
-  state.counters["ns/particle"] = benchmark::Counter(
-      static_cast<double>(p.radius.size()) * 1e-9,
-      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  per_particle(state, p.radius.size());
 }
 
-BENCHMARK(explicit_static)->Name("explicit/static")->Unit(benchmark::kMillisecond);
-BENCHMARK(explicit_moving)->Name("explicit/moving")->Unit(benchmark::kMillisecond);
-BENCHMARK(implicit_times)->Name("implicit/x")->Arg(1)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond);
-BENCHMARK(neighbour_build)->Unit(benchmark::kMillisecond);
-BENCHMARK(geometry)->Unit(benchmark::kMillisecond);
+BENCHMARK(explicit_static)->Name("explicit/static")->ArgName("cell_ordered")->Arg(1)->Arg(0)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(explicit_moving)->Name("explicit/moving")->ArgName("cell_ordered")->Arg(1)->Arg(0)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(implicit_step)->Name("implicit")->ArgNames({"cell_ordered", "dt_x_explicit"})
+    ->Args({1, 1})->Args({1, 20})->Args({1, 100})->Args({0, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(neighbour_build)->ArgName("cell_ordered")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+BENCHMARK(geometry)->ArgName("cell_ordered")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

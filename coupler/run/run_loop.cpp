@@ -108,6 +108,7 @@ void RunSession::maybe_record(bool last) {
   if (step_ >= next_series_step_ || last) {
     run_file_->append_timeseries(time_s_, step_, scalars_);
     cutting_->observe(scalars_);
+    calibration_->observe(scalars_);
     const std::uint64_t every = scene_.output().timeseries_every_steps();
     next_series_step_ = (step_ / every + 1) * every;
   }

@@ -49,6 +49,7 @@ RunSession::RunSession(const RunOptions& options, scene::LoadedScene scene)
   coupled_ = scene_.has_fluid();
   if (options_.out_dir.empty()) options_.out_dir = fs::path("out") / loaded_.path.stem();
   cutting_ = std::make_unique<CuttingSummary>(scene_);
+  calibration_ = std::make_unique<CalibrationSummary>(scene_);
   // A packing file named in the scene is relative to the scene file; the DEM gets it absolute.
   if (loaded_.scene.dem().has_packing_file()) {
     const fs::path p(loaded_.scene.dem().packing_file().path());
@@ -125,7 +126,8 @@ void RunSession::start_modules() {
           fluid_->link->label(),
           "the scene asks for fluid.model \"" + scene_.fluid().model() + "\", but " +
               fluid_->hello.module_name() + " " + fluid_->hello.module_version() + " offers: " +
-              join(fluid_->hello.models()));
+              join(fluid_->hello.models()),
+          /*refused=*/true);
     }
   }
 }
@@ -273,8 +275,10 @@ int RunSession::run() {
     std::cerr << loaded_.path.string() << ": refused: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const wire::ModuleFailure& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kExitModuleFailed;
+    // A module that answers Init with an error has refused the scene: bad input, nothing ran.
+    std::cerr << (e.refused() ? loaded_.path.string() + ": refused by " : std::string("error: "))
+              << e.what() << "\n";
+    return e.refused() ? kExitBadInput : kExitModuleFailed;
   } catch (const wire::Interrupted&) {
     std::cerr << "interrupted during start-up\n";
     return 128 + stop_signal();
@@ -328,6 +332,7 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
   const double wall = progress_ ? progress_->elapsed_s() : 0.0;
   summary_.set("status", status);
   cutting_->write(summary_);
+  calibration_->write(summary_);
   if (!reason.empty()) summary_.set("error", reason);
   summary_.set("time_s", time_s_);
   summary_.set("steps", static_cast<std::int64_t>(step_));

@@ -15,6 +15,7 @@
 
 #include "output/run_file.hpp"
 #include "output/summary_json.hpp"
+#include "run/calibration_summary.hpp"
 #include "run/cutting_summary.hpp"
 #include "run/module_link.hpp"
 #include "run/progress.hpp"
@@ -89,6 +90,7 @@ class RunSession {
 
   std::unique_ptr<RunFile> run_file_;
   std::unique_ptr<CuttingSummary> cutting_;
+  std::unique_ptr<CalibrationSummary> calibration_;
   bool dem_logs_breaks_ = false;  // the DEM hands out its bond breaks with every frame
   Summary summary_;
   std::unique_ptr<Progress> progress_;

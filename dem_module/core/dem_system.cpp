@@ -136,32 +136,37 @@ void DemSystem::compute_internal_forces() {
   double* q = particles_.torque.data();
   const double* inv_m = particles_.inv_mass.data();
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
-  const int threads = settings_.threads;
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (std::size_t i = 0; i < n; ++i) {
-    f[2 * i] = gx / inv_m[i];
-    f[2 * i + 1] = gy / inv_m[i];
-    q[i] = 0.0;
-  }
-  if (!has_pairs_) return;
-
-  buffers_.prepare(threads, n);
+  const int threads = has_pairs_ ? settings_.threads : 1;
+  if (has_pairs_) buffers_.resize(threads, n);
   bool any_broken = false;
   double friction = 0.0;
   const double dt = dt_last_;
+  // One parallel region per force evaluation: reset, pair loops, reduction, with barriers between.
 #pragma omp parallel num_threads(threads) if (threads > 1) reduction(|| : any_broken) \
     reduction(+ : friction)
   {
     const int t = threads > 1 ? thread_id() : 0;
-    const ForceView out = buffers_.view(t, particles_);
-    const auto [b0, b1] = share(bonds_.size(), t, threads);
-    bonds_.compute(particles_, dt, b0, b1, out, any_broken);
-    const auto [c0, c1] = share(contacts_.size(), t, threads);
-    if (settings_.contact.normal_stiffness_n_m > 0) {
-      contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, friction);
+    const auto [p0, p1] = share(n, t, threads);
+    for (std::size_t i = p0; i < p1; ++i) {
+      f[2 * i] = gx / inv_m[i];
+      f[2 * i + 1] = gy / inv_m[i];
+      q[i] = 0.0;
+    }
+    if (has_pairs_) {
+      if (t > 0) buffers_.zero(t);
+#pragma omp barrier
+      const ForceView out = buffers_.view(t, particles_);
+      const auto [b0, b1] = share(bonds_.size(), t, threads);
+      bonds_.compute(particles_, dt, b0, b1, out, any_broken);
+      if (settings_.contact.normal_stiffness_n_m > 0) {
+        const auto [c0, c1] = share(contacts_.size(), t, threads);
+        contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, friction);
+      }
+#pragma omp barrier
+      buffers_.reduce(particles_, p0, p1);
     }
   }
-  buffers_.reduce(particles_);
+  if (!has_pairs_) return;
   ledger_.friction_j += friction;
   if (!walls_.empty()) {
     walls_.compute(particles_, settings_.contact, dt, buffers_.view(0, particles_),

@@ -16,11 +16,13 @@ struct ForceView {
 
 class ForceBuffers {
  public:
-  /// Sizes the buffers for `threads` threads and n particles, zeroing the private ones.
-  void prepare(int threads, std::size_t n);
+  /// Sizes the buffers for `threads` threads and n particles (allocates only when they grow).
+  void resize(int threads, std::size_t n);
+  /// Zeroes thread t's private buffer (t >= 1); each thread zeroes its own.
+  void zero(int thread);
   ForceView view(int thread, Particles& p);
-  /// Adds every private buffer into the particle arrays.
-  void reduce(Particles& p);
+  /// Adds every private buffer into the particle arrays for particles [begin, end).
+  void reduce(Particles& p, std::size_t begin, std::size_t end) const;
   int threads() const { return threads_; }
 
  private:

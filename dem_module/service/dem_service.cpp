@@ -44,6 +44,7 @@ void DemService::handle(const wire::Message& request, wire::Message& reply) {
 
 void DemService::init(const wire::Init& init, wire::Message& reply) {
   setup_ = build_dem(init.scene());
+  width_strips0_m_ = 0.0;
   position_at_exchange_ = setup_.system->particles().position;
 
   wire::InitReply* r = reply.envelope.mutable_init_reply();
@@ -136,6 +137,7 @@ void DemService::report(wire::Message& reply) {
     out["chips"] = static_cast<double>(chips.chips);
     out["chip_area_mean_m2"] = chips.mean_area_m2;
   }
+  if (setup_.rig.present) report_rig(out);
   for (std::size_t b = 0; b < s.walls().bodies().size(); ++b) {
     const WallBody& body = s.walls().bodies()[b];
     if (setup_.tool.present && b == setup_.tool.body) {
@@ -151,6 +153,27 @@ void DemService::report(wire::Message& reply) {
     out[prefix + "offset_x_m"] = body.offset_x;
     out[prefix + "offset_y_m"] = body.offset_y;
   }
+}
+
+void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
+  const DemSystem& s = *setup_.system;
+  const LoadingRig& rig = setup_.rig;
+  const WallBody& top = s.walls().bodies()[rig.top];
+  const WallBody& bottom = s.walls().bodies()[rig.bottom];
+  // The discs push the top platen up and the bottom one down: the mean of both is the load.
+  const double force = 0.5 * (top.force_y - bottom.force_y);
+  out["platen_force_n_per_m"] = force;
+  out["axial_strain"] = (bottom.offset_y - top.offset_y) / rig.height0_m;
+  if (!rig.ucs) return;
+  out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa
+  auto mean_x = [&](const std::vector<std::uint32_t>& strip) {
+    double sum = 0.0;
+    for (std::uint32_t i : strip) sum += s.particles().position[2 * i];
+    return strip.empty() ? 0.0 : sum / strip.size();
+  };
+  if (width_strips0_m_ == 0.0) width_strips0_m_ = mean_x(rig.right_strip) - mean_x(rig.left_strip);
+  const double width = mean_x(rig.right_strip) - mean_x(rig.left_strip);
+  out["lateral_strain"] = (width - width_strips0_m_) / width_strips0_m_;
 }
 
 void DemService::frame(const wire::FrameRequest& request, wire::Message& reply) {

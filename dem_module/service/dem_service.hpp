@@ -29,6 +29,7 @@ class DemService final : public wire::ModuleHandler {
   void frame(const wire::FrameRequest& request, wire::Message& reply);
   void add_field(std::string_view field, wire::Message& reply);
   void report(wire::Message& reply);
+  void report_rig(google::protobuf::Map<std::string, double>& out);
   DemSystem& system();
 
   DemSetup setup_;
@@ -38,6 +39,7 @@ class DemService final : public wire::ModuleHandler {
   std::vector<std::uint32_t> bond_count_;
   std::size_t breaks_sent_ = 0;               // breaks already handed out in frames
   double split_dt_s_ = 0.0;
+  double width_strips0_m_ = 0.0;  // UCS: strip distance at the first report
 };
 
 }  // namespace rockcut::dem

@@ -128,6 +128,33 @@ ToolPlacement add_tool(const rockcut::Tool& t, const Particles& p, WallSet& wall
   return tool;
 }
 
+// Platens just touching the specimen's top and bottom, three specimen widths wide, closing at the
+// given speed. For the UCS test the lateral strain comes from the discs within one largest
+// diameter of the left and right edges.
+LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, WallSet& walls) {
+  double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    left = std::min(left, p.position[2 * i] - p.radius[i]);
+    right = std::max(right, p.position[2 * i] + p.radius[i]);
+    top = std::max(top, p.position[2 * i + 1] + p.radius[i]);
+    bottom = std::min(bottom, p.position[2 * i + 1] - p.radius[i]);
+    r_max = std::max(r_max, p.radius[i]);
+  }
+  LoadingRig rig;
+  rig.present = true;
+  rig.ucs = test.kind() == "ucs";
+  rig.height0_m = top - bottom;
+  rig.width0_m = right - left;
+  const double w = right - left, v = test.platen_speed_m_s();
+  rig.top = walls.add_body("platen_top", {left - w, top, right + w, top}, false, 0.0, -v);
+  rig.bottom = walls.add_body("platen_bottom", {left - w, bottom, right + w, bottom}, false, 0.0, v);
+  for (std::uint32_t i = 0; i < p.size(); ++i) {
+    if (p.position[2 * i] - p.radius[i] < left + 2 * r_max) rig.left_strip.push_back(i);
+    if (p.position[2 * i] + p.radius[i] > right - 2 * r_max) rig.right_strip.push_back(i);
+  }
+  return rig;
+}
+
 }  // namespace
 
 DemSetup build_dem(const rockcut::Scene& scene) {
@@ -190,6 +217,15 @@ DemSetup build_dem(const rockcut::Scene& scene) {
       throw std::invalid_argument("dem.tool needs dem.contact: the tool pushes discs by contact");
     }
     setup.tool = add_tool(dem.tool(), particles, walls);
+  }
+  if (dem.has_loading_test()) {
+    if (!dem.has_contact()) {
+      throw std::invalid_argument("dem.loading_test needs dem.contact: platens push by contact");
+    }
+    if (dem.has_tool()) {
+      throw std::invalid_argument("dem.loading_test and dem.tool exclude each other");
+    }
+    setup.rig = add_platens(dem.loading_test(), particles, walls);
   }
   if (!walls.empty() && !dem.has_contact()) {
     throw std::invalid_argument("dem.walls need dem.contact: walls push discs by contact");

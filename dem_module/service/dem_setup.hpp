@@ -23,9 +23,19 @@ struct ToolPlacement {
   double steady_after_m = 0.0;    ///< travel into the specimen after which the cut is steady
 };
 
+/// A platen test as placed around the specimen.
+struct LoadingRig {
+  bool present = false;
+  bool ucs = true;                      ///< else Brazilian
+  std::uint32_t top = 0, bottom = 0;    ///< wall bodies
+  double height0_m = 0.0, width0_m = 0.0;
+  std::vector<std::uint32_t> left_strip, right_strip;  ///< discs whose mean x gives the width
+};
+
 struct DemSetup {
   std::unique_ptr<DemSystem> system;
   ToolPlacement tool;
+  LoadingRig rig;
   CriticalStep critical;                      ///< none (dt 0) without springs
   std::vector<std::uint32_t> initial_bonds;   ///< per particle, for damage
   std::string specimen_report;                ///< porosity, coordination, ... for the log

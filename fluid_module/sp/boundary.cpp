@@ -17,9 +17,13 @@ void Sides::fit(std::span<const double> position) {
   at_m = {xmin, xmax, ymin, ymax};
 }
 
-BoundaryCounts classify_boundary(std::span<const double> div_r, double surface_div_r,
+BoundaryCounts classify_boundary(std::span<const double> div_r, std::span<const double> normal,
+                                 double surface_div_r, double h_m,
                                  std::span<const double> position, std::span<const double> radius,
                                  const Sides& sides, std::span<Boundary> out) {
+  // Outward normals of the sides (left, right, bottom, top).
+  static constexpr double kSideNormal[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+  static constexpr double kFacing = 0.5;  // cos 60 degrees
   BoundaryCounts counts;
   const bool any_open = sides.any_open();
   for (std::size_t i = 0; i < div_r.size(); ++i) {
@@ -27,16 +31,24 @@ BoundaryCounts classify_boundary(std::span<const double> div_r, double surface_d
       out[i] = Boundary::interior;
       continue;
     }
-    const double x = position[2 * i], y = position[2 * i + 1], d = radius[i];
-    const std::array<double, 4> distance = {std::abs(x - sides.at_m[Sides::left]),
-                                            std::abs(x - sides.at_m[Sides::right]),
-                                            std::abs(y - sides.at_m[Sides::bottom]),
-                                            std::abs(y - sides.at_m[Sides::top])};
-    bool near_sealed = false, near_open = false;
+    const double x = position[2 * i], y = position[2 * i + 1];
+    const std::array<double, 4> distance = {
+        std::abs(x - sides.at_m[Sides::left]), std::abs(x - sides.at_m[Sides::right]),
+        std::abs(y - sides.at_m[Sides::bottom]), std::abs(y - sides.at_m[Sides::top])};
+    const double nx = normal[2 * i], ny = normal[2 * i + 1];
+    const double norm = std::hypot(nx, ny);
+    bool faces_sealed = false, faces_open = false;
     for (int s = 0; s < 4; ++s) {
-      if (distance[s] < d) (sides.sealed[s] ? near_sealed : near_open) = true;
+      const double cosine = norm > 0.0 ? (nx * kSideNormal[s][0] + ny * kSideNormal[s][1]) / norm
+                                       : 0.0;
+      if (cosine <= kFacing) continue;
+      if (sides.sealed[s]) {
+        faces_sealed = faces_sealed || distance[s] < h_m;
+      } else {
+        faces_open = faces_open || distance[s] < 2.0 * radius[i];
+      }
     }
-    const bool drained = near_open || (!near_sealed && any_open);
+    const bool drained = faces_open || (!faces_sealed && any_open);
     out[i] = drained ? Boundary::drained : Boundary::sealed;
     ++(drained ? counts.drained : counts.sealed);
   }

@@ -2,14 +2,23 @@
 //
 // A particle whose Lucy div r (eq. 24) is at most the threshold (1.5) is a surface particle. A
 // surface particle meets free water, and is held at p_hydro (Dirichlet), unless it lies against a
-// wall: then it keeps the natural no-flux condition of the SP Laplacian. Walls are the sealed
-// sides of the specimen's initial bounding box (of the particle centres): a surface particle is
-// sealed when its centre lies within its radius of a sealed side and not within its radius of an
-// open side (a corner between a wall and the free surface drains). Within one radius: a disc
-// touching a wall has its centre at most r_max - r_min from the box of the centres, and the next
-// layer lies at least a diameter further in. A surface particle near no side (a crack, a cut
-// face, a chip) drains if any side is open, i.e. internal surfaces are taken as connected to the
-// free water; with every side sealed nothing drains.
+// wall: then it keeps the natural no-flux condition of the SP Laplacian.
+//
+// Walls are the sealed sides of the initial bounding box of the particle centres. A surface
+// particle faces a side when its outward normal (Lucy's gradient of the constant 1,
+// Geometry::normal) is within 60 degrees of the side's and it lies close to it: within h of a
+// sealed side (the whole surface layer along a wall), within its own diameter of an open side
+// (the outer layer of the free surface itself). Then:
+//  - facing an open side: drained, also where it faces a wall too (the corner particle between a
+//    wall and the free surface drains);
+//  - facing a sealed side (and no open one): sealed;
+//  - facing no side (a crack, a cut face, a chip, a fragment): drained if any side is open, i.e.
+//    internal surfaces are taken as connected to the free water; with every side sealed nothing
+//    drains.
+// Why normals and two distances: the layer that div r <= 1.5 marks is up to ~0.4 h thick, and two
+// particles thick near corners at h / spacing >= 4. A distance test alone drained the second
+// layer along the walls; a common distance drained particles against a wall one layer below the
+// free surface.
 #pragma once
 
 #include <array>
@@ -31,11 +40,13 @@ struct Sides {
   bool any_open() const { return !(sealed[0] && sealed[1] && sealed[2] && sealed[3]); }
 };
 
-/// Classifies every particle. Returns the number of drained and sealed surface particles.
 struct BoundaryCounts {
   std::size_t drained = 0, sealed = 0;
 };
-BoundaryCounts classify_boundary(std::span<const double> div_r, double surface_div_r,
+
+/// Classifies every particle (see above): `normal` 2 per particle, h [m] the kernel support.
+BoundaryCounts classify_boundary(std::span<const double> div_r, std::span<const double> normal,
+                                 double surface_div_r, double h_m,
                                  std::span<const double> position, std::span<const double> radius,
                                  const Sides& sides, std::span<Boundary> out);
 

@@ -54,6 +54,7 @@ void refine_volumes(const NeighbourList& list, double w0, Geometry& g) {
 // CSPM correction of eq. 16 in its 2x2 matrix form (symmetric, positive semi-definite), and
 // Lucy's div r of eq. 24, sum_j (m_j / rho_j) (x_j - x_i) . grad_i W_ij = sum_j V_j (-F_ij) r^2.
 // The difference form (x_j - x_i) is used so that div r does not depend on where the origin is.
+// With the same volumes, -sum_j (m_j / rho_j) grad_i W_ij points out of the surface.
 void correction_matrices(const NeighbourList& list, std::span<const double> lucy_volume,
                          Geometry& g) {
   const int n = static_cast<int>(list.particles());
@@ -63,7 +64,7 @@ void correction_matrices(const NeighbourList& list, std::span<const double> lucy
   const double* vl = lucy_volume.data();
   const double* x = g.position.data();
   for (int i = 0; i < n; ++i) {
-    double a = 0.0, b = 0.0, c = 0.0, divr = 0.0;
+    double a = 0.0, b = 0.0, c = 0.0, divr = 0.0, nx = 0.0, ny = 0.0;
     const double xi = x[2 * i], yi = x[2 * i + 1];
     for (int k = off[i]; k < off[i + 1]; ++k) {
       const int j = nb[k];
@@ -73,8 +74,12 @@ void correction_matrices(const NeighbourList& list, std::span<const double> lucy
       b += s * dx * dy;
       c += s * dy * dy;
       divr += vl[j] * mf * (dx * dx + dy * dy);
+      nx -= vl[j] * mf * dx;
+      ny -= vl[j] * mf * dy;
     }
     g.div_r[i] = divr;
+    g.normal[2 * i] = nx;
+    g.normal[2 * i + 1] = ny;
     // Eigenvalues of [[a, b], [b, c]]: lambda = m +- d.
     const double m = 0.5 * (a + c), h = 0.5 * (a - c);
     const double d = std::sqrt(h * h + b * b);
@@ -123,6 +128,7 @@ void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
   geo.l_inverse.resize(3 * n);
   geo.correction.resize(n);
   geo.div_r.resize(n);
+  geo.normal.resize(2 * n);
   pair_kernels(list, kernel, geo.position.data(), geo);
   for (unsigned k = 0; k < volume_iterations; ++k) refine_volumes(list, kernel.w0(), geo);
   correction_matrices(list, lucy_volume, geo);

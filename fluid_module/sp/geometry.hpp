@@ -37,6 +37,9 @@ struct Geometry {
   std::vector<double> l_inverse;
   std::vector<Correction> correction;
   std::vector<double> div_r;   ///< Lucy's uncorrected div r (eq. 24) [1]
+  /// Lucy's uncorrected gradient of the constant 1 with the sign flipped, sum_j (m_j / rho_j)
+  /// F_ij (x_j - x_i) [1/m], 2 per particle: 0 inside, the outward normal at a surface.
+  std::vector<double> normal;
   std::vector<double> scratch; ///< per particle, for the volume iterations
 
   std::size_t particles() const { return volume.size(); }

@@ -30,7 +30,7 @@ struct SpParams {
   // Implicit model.
   double solver_tolerance = 1e-8;
   unsigned solver_max_iterations = 2000;
-  double max_diffusion_number = 1.0;
+  double max_diffusion_number = 0.2;
   // Initial Gaussian pulse on top of p_hydro (amplitude 0: none).
   double pulse_amplitude_pa = 0.0, pulse_x_m = 0.0, pulse_y_m = 0.0, pulse_sigma_m = 1.0;
 

@@ -80,8 +80,8 @@ void PorePressureModel::initialise(const StaticData& data) {
   work_.assign(2 * n, 0.0);
   grad_.assign(2 * n, 0.0);
   boundary_.assign(n, Boundary::interior);
-  counts_ = classify_boundary(geo_.div_r, params_.surface_div_r, data.position, radius_, sides_,
-                              boundary_);
+  counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
+                              data.position, radius_, sides_, boundary_);
 }
 
 void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
@@ -94,8 +94,8 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   }
   list_.update(k.position);
   update_geometry(list_, kernel_, k.position, lucy_volume_, params_.volume_iterations, geo_);
-  counts_ = classify_boundary(geo_.div_r, params_.surface_div_r, k.position, radius_, sides_,
-                              boundary_);
+  counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
+                              k.position, radius_, sides_, boundary_);
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.

@@ -51,7 +51,7 @@ class PorePressureModel : public FluidModel {
   /// particles at p_hydro and clamping by eq. 22. Called once per step with dt > 0.
   virtual void advance(double dt_s) = 0;
   /// Model-specific scalars appended to the common ones.
-  virtual void add_scalars(std::vector<std::pair<std::string, double>>& out) const {}
+  virtual void add_scalars(std::vector<std::pair<std::string, double>>&) const {}
 
   const SpParams params_;
   const WendlandC2 kernel_;

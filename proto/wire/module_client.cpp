@@ -60,7 +60,7 @@ void ModuleClient::receive(Message& reply, bool interruptible) {
     throw ModuleFailure(name_, std::string("sent a malformed message: ") + e.what());
   }
   if (reply.envelope.has_error()) {
-    throw ModuleFailure(name_, reply.envelope.error().message());
+    throw ModuleFailure(name_, reply.envelope.error().message(), /*refused=*/true);
   }
 }
 

@@ -20,12 +20,16 @@ namespace rockcut::wire {
 /// names the module.
 class ModuleFailure : public std::runtime_error {
  public:
-  ModuleFailure(std::string module, const std::string& reason)
-      : std::runtime_error(module + ": " + reason), module_(std::move(module)) {}
+  /// `refused`: the module is alive and answered with an Error (e.g. it rejected the scene), as
+  /// opposed to dying or falling silent.
+  ModuleFailure(std::string module, const std::string& reason, bool refused = false)
+      : std::runtime_error(module + ": " + reason), module_(std::move(module)), refused_(refused) {}
   const std::string& module() const { return module_; }
+  bool refused() const { return refused_; }
 
  private:
   std::string module_;
+  bool refused_;
 };
 
 /// The coupler was asked to stop (SIGINT/SIGTERM) while waiting.

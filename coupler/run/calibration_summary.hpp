@@ -1,0 +1,39 @@
+// The results of a calibration test (scene block dem.loading_test), from the DEM's step reports:
+// UCS, Young's modulus and Poisson's ratio for `ucs`, the Brazilian tensile strength for
+// `brazilian` (definitions in proto/rockcut/scene.proto, message LoadingTest).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "output/summary_json.hpp"
+#include "rockcut/scene.pb.h"
+
+namespace rockcut::coupler {
+
+class CalibrationSummary {
+ public:
+  explicit CalibrationSummary(const rockcut::Scene& scene);
+  bool active() const { return active_; }
+  /// One time-series sample of the DEM's scalars.
+  void observe(const std::vector<std::pair<std::string, double>>& scalars);
+  void write(Summary& summary) const;
+
+  struct Sample {
+    double axial_strain, load, lateral_strain;  // load: stress [Pa] (ucs) or force [N/m]
+  };
+  /// Least-squares slopes of load and lateral strain against axial strain over the samples before
+  /// the failure peak whose load lies in [lo, hi] times the peak. The failure peak is the largest
+  /// load before the load first drops below 80 % of the largest so far. Returns false with fewer than 3 samples.
+  static bool slopes_near_half_peak(const std::vector<Sample>& samples, double lo, double hi,
+                                    double& load_slope, double& lateral_slope);
+
+ private:
+  bool active_ = false;
+  bool ucs_ = true;
+  double diameter_m_ = 0.0;
+  std::vector<Sample> samples_;
+};
+
+}  // namespace rockcut::coupler

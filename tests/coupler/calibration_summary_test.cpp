@@ -1,0 +1,72 @@
+// Calibration results from a stress-strain series: UCS, E at 40-60 % of the failure peak, nu, BTS.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "run/calibration_summary.hpp"
+
+namespace rockcut::coupler {
+namespace {
+
+rockcut::Scene ucs_scene() {
+  rockcut::Scene s;
+  s.mutable_dem()->mutable_loading_test()->set_kind("ucs");
+  return s;
+}
+
+std::vector<std::pair<std::string, double>> sample(double strain, double stress, double lateral) {
+  return {{"axial_strain", strain}, {"axial_stress_pa", stress}, {"lateral_strain", lateral}};
+}
+
+double number(const Summary& s, const std::string& key) { return std::get<double>(*s.get(key)); }
+
+TEST(CalibrationSummary, LinearElasticThenBrittle) {
+  CalibrationSummary c(ucs_scene());
+  const double e = 5.5e9, nu = 0.22;
+  for (int k = 0; k <= 100; ++k) {
+    const double strain = 2.5e-5 * k;  // peak 13.75 MPa at k = 100
+    c.observe(sample(strain, e * strain, nu * strain));  // compression +, extension +
+  }
+  c.observe(sample(2.6e-3, 2e6, 1e-3));  // failure
+  Summary out;
+  c.write(out);
+  // Exact data: the least-squares fit reproduces E and nu to round-off.
+  EXPECT_NEAR(number(out, "ucs_pa"), e * 2.5e-3, 1e-6);
+  EXPECT_NEAR(number(out, "youngs_modulus_pa") / e, 1.0, 1e-12);
+  EXPECT_NEAR(number(out, "poisson_ratio"), nu, 1e-12);
+}
+
+TEST(CalibrationSummary, StrengthIsTheFirstFailurePeakNotALaterCompaction) {
+  CalibrationSummary c(ucs_scene());
+  for (int k = 0; k <= 10; ++k) c.observe(sample(1e-4 * k, 1e6 * k, 0.0));  // peak 10 MPa
+  c.observe(sample(1.1e-3, 7e6, 0.0));    // drops below 80 %: failed
+  c.observe(sample(3.0e-3, 14e6, 0.0));   // the rubble compacts to a higher load later
+  Summary out;
+  c.write(out);
+  EXPECT_EQ(number(out, "ucs_pa"), 10e6);
+  EXPECT_NEAR(number(out, "youngs_modulus_pa"), 1e10, 1e-3);
+}
+
+TEST(CalibrationSummary, BrazilianTensileStrength) {
+  rockcut::Scene s;
+  s.mutable_dem()->mutable_loading_test()->set_kind("brazilian");
+  s.mutable_dem()->mutable_specimen()->set_diameter_m(0.04);
+  CalibrationSummary c(s);
+  for (double f : {0.0, 5e4, 1e5, 2e4}) {
+    c.observe({{"axial_strain", 0.0}, {"platen_force_n_per_m", f}});
+  }
+  Summary out;
+  c.write(out);
+  EXPECT_NEAR(number(out, "bts_pa"), 2 * 1e5 / (std::numbers::pi * 0.04), 1e-6);
+}
+
+TEST(CalibrationSummary, InactiveWithoutALoadingTest) {
+  CalibrationSummary c(rockcut::Scene{});
+  EXPECT_FALSE(c.active());
+  Summary out;
+  c.write(out);
+  EXPECT_TRUE(out.entries().empty());
+}
+
+}  // namespace
+}  // namespace rockcut::coupler

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plots of a cutting run: scripts/plot_cutting OUT [OUT2 ...]
 
-For each run directory OUT (holding run.h5, and summary.json when the run has ended) writes
+For each run directory OUT (holding run.h5, and summary.json once the run has ended) writes
   OUT/force.png   the tool forces against tool travel: the force resisting the cut (-F_x) and the
                   vertical force on the tool (F_y, positive up), the steady part shaded and its
                   means drawn as lines (coupler/run/cutting_summary.hpp defines the steady part);
@@ -9,12 +9,14 @@ For each run directory OUT (holding run.h5, and summary.json when the run has en
                   damage D = 1 - bonds / initial bonds (paper figures 11-12), with the chisel;
   OUT/breaks.png  where bonds broke, coloured by mode (tensile, shear).
 Works on a run that is still going or stopped early: it reads what run.h5 holds so far.
+Exit status: 0 if every OUT was plotted, 1 otherwise, 2 without arguments.
 """
 import json
 import math
 import os
 import re
 import sys
+import time
 
 os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")  # the run may still be writing run.h5
 
@@ -26,6 +28,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import EllipseCollection  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
+
+
+# ---------------------------------------------------------------------------------------------
+# Reading
 
 
 def tool_block(scene_text):
@@ -46,28 +52,72 @@ def tool_block(scene_text):
     return tool
 
 
+class RunData:
+    """What the plots need from run.h5, read into memory at once."""
+
+    def __init__(self):
+        self.scene = ""     # the effective scene text (root attribute `scene`)
+        self.ts = {}        # time-series name -> values, all cut to the same length
+        self.first = None   # (position, radius) of the first frame
+        self.last = None    # (position, radius, damage, time_s) of the last readable frame
+        self.breaks = None  # (x, y, mode), or None without /breaks
+
+
 def read_timeseries(f):
     if "timeseries" not in f:
         return {}
     g = f["timeseries"]
-    series = {name: np.asarray(g[name][()], dtype=float) for name in g.keys()}
+    series = {}
+    for name in g.keys():
+        try:
+            series[name] = np.asarray(g[name][()], dtype=float)
+        except (KeyError, OSError, ValueError):
+            pass  # being extended by the writer: leave it out
     n = min((len(v) for v in series.values()), default=0)  # a partial file may be ragged
     return {k: v[:n] for k, v in series.items()}
 
 
-def complete_frames(f, fields):
-    """Names of the frames that hold all of `fields`, in order."""
-    if "frames" not in f:
-        return []
-    names = []
-    for name in sorted(f["frames"].keys()):
-        g = f["frames"][name]
+def read_frame(g, fields):
+    values = tuple(np.asarray(g[k][()]) for k in fields)
+    if len(values[0]) == 0 or any(len(v) != len(values[0]) for v in values):
+        raise ValueError("incomplete frame")
+    return values
+
+
+def load(h5):
+    """Reads run.h5. A run still writing it may leave the newest objects unreadable, so each part
+    is read on its own, and frames from the newest back until one reads whole."""
+    d = RunData()
+    with h5py.File(h5, "r") as f:
+        scene = f.attrs.get("scene", "")
+        d.scene = scene.decode() if isinstance(scene, bytes) else str(scene)
+        d.ts = read_timeseries(f)
+        names = sorted(f["frames"].keys()) if "frames" in f else []
+        for name in names:
+            try:
+                d.first = read_frame(f["frames"][name], ("position", "radius"))
+                break
+            except (KeyError, OSError, ValueError):
+                continue
+        for name in reversed(names):
+            try:
+                g = f["frames"][name]
+                pos, radius, damage = read_frame(g, ("position", "radius", "damage"))
+                d.last = (pos, radius, damage, float(g.attrs.get("time_s", np.nan)))
+                break
+            except (KeyError, OSError, ValueError):
+                continue
         try:
-            if all(k in g for k in fields) and len(g["position"]) == len(g["radius"]) > 0:
-                names.append(name)
-        except (KeyError, OSError):
-            pass
-    return names
+            b = f["breaks"]
+            n = min(len(b["x_m"]), len(b["y_m"]), len(b["mode"]))
+            d.breaks = (b["x_m"][:n], b["y_m"][:n], b["mode"][:n])
+        except (KeyError, OSError, ValueError):
+            d.breaks = None  # no /breaks: no bond has broken (yet)
+    return d
+
+
+# ---------------------------------------------------------------------------------------------
+# Plots
 
 
 def running_mean(y, n):
@@ -80,6 +130,10 @@ def running_mean(y, n):
     return out
 
 
+def run_name(out):
+    return os.path.basename(os.path.normpath(out))
+
+
 def plot_force(out, ts, tool, summary):
     if not {"tool_travel_m", "tool_force_x_n_per_m", "tool_force_y_n_per_m"} <= ts.keys():
         print(f"{out}: no tool force time series; force.png not written", file=sys.stderr)
@@ -87,10 +141,11 @@ def plot_force(out, ts, tool, summary):
     travel_mm = ts["tool_travel_m"] * 1e3
     fh = -ts["tool_force_x_n_per_m"] / 1e3  # kN/m, the force resisting the cut
     fv = ts["tool_force_y_n_per_m"] / 1e3   # kN/m, positive up
+    # The steady part as coupler/run/cutting_summary.cpp takes it: travel >= steady_after_m.
     steady = ts["tool_travel_m"] >= tool["steady_after_m"]
     fig, ax = plt.subplots(figsize=(8, 4.5), dpi=100)
     # Raw samples faintly, a 1 mm running mean on top.
-    step_mm = np.median(np.diff(travel_mm)) if len(travel_mm) > 1 else 1.0
+    step_mm = float(np.median(np.diff(travel_mm))) if len(travel_mm) > 1 else 0.0
     n = max(1, int(round(1.0 / step_mm))) if step_mm > 0 else 1
     ax.plot(travel_mm, fh, color="tab:blue", lw=0.4, alpha=0.3)
     ax.plot(travel_mm, fv, color="tab:orange", lw=0.4, alpha=0.3)
@@ -110,8 +165,8 @@ def plot_force(out, ts, tool, summary):
     ax.axhline(0, color="k", lw=0.5)
     ax.set_xlabel("tool travel into the specimen [mm]")
     ax.set_ylabel("force on the tool [kN per m of width]")
-    status = summary.get("status", "running or stopped early (no summary.json)")
-    ax.set_title(f"{os.path.basename(os.path.normpath(out))}: tool forces ({status})", fontsize=10)
+    status = summary.get("status", "running or stopped early: no summary.json")
+    ax.set_title(f"{run_name(out)}: tool forces ({status})", fontsize=10)
     ax.legend(fontsize=7, loc="upper left")
     fig.tight_layout()
     fig.savefig(os.path.join(out, "force.png"))
@@ -119,12 +174,18 @@ def plot_force(out, ts, tool, summary):
 
 
 def tool_polygon(tool, tip_x, tip_y):
+    """The chisel as dem_module builds it: tip, top of the cutting face, end of the clearance face."""
     a = math.radians(tool["cutting_angle_deg"])
     b = math.radians(tool["clearance_angle_deg"])
     L = tool["face_length_m"]
     return np.array([[tip_x, tip_y],
                      [tip_x - L * math.cos(a), tip_y + L * math.sin(a)],
                      [tip_x - L * math.cos(b), tip_y + L * math.sin(b)]])
+
+
+def dpi_for(radius):
+    """Enough pixels to tell the discs apart on a paper-scale block, small files otherwise."""
+    return 100 if len(radius) < 5000 else 250
 
 
 def discs(ax, pos, radius, **kw):
@@ -146,25 +207,24 @@ def frame_extent(ax, pos, radius, poly=None):
     ax.set_aspect("equal")
 
 
-def plot_damage(out, f, ts, tool):
-    names = complete_frames(f, ("position", "radius", "damage"))
-    if not names:
+def plot_damage(out, d, tool):
+    if d.last is None:
         print(f"{out}: no frame with damage; damage.png not written", file=sys.stderr)
-        return None
-    g0, g = f["frames"][names[0]], f["frames"][names[-1]]
-    pos, radius = g["position"][()], g["radius"][()]
-    damage = np.clip(g["damage"][()], 0.0, 1.0)
-    t = float(g.attrs.get("time_s", np.nan))
+        return
+    pos, radius, damage, t = d.last
+    damage = np.clip(damage, 0.0, 1.0)
+    ts = d.ts
     # The chisel: tip `cutting_depth_m` below the specimen's initial top, at the specimen's initial
-    # left edge plus the tool travel at the frame's time.
+    # left edge plus the tool travel at the frame's time (as dem_module places it).
     poly = None
-    if "tool_travel_m" in ts and "time_s" in ts and len(ts["time_s"]) and not math.isnan(t):
-        p0, r0 = g0["position"][()], g0["radius"][()]
+    if (d.first is not None and "tool_travel_m" in ts and "time_s" in ts and len(ts["time_s"])
+            and not math.isnan(t)):
+        p0, r0 = d.first
         left = (p0[:, 0] - r0).min()
         top = (p0[:, 1] + r0).max()
         travel = np.interp(t, ts["time_s"], ts["tool_travel_m"])
         poly = tool_polygon(tool, left + travel, top - tool["cutting_depth_m"])
-    fig, ax = plt.subplots(figsize=(8, 5), dpi=100)
+    fig, ax = plt.subplots(figsize=(8, 5), dpi=dpi_for(radius))
     coll = discs(ax, pos, radius, array=damage, cmap="jet", linewidths=0)
     coll.set_clim(0, 1)
     if poly is not None:
@@ -173,22 +233,20 @@ def plot_damage(out, f, ts, tool):
     fig.colorbar(coll, ax=ax, shrink=0.8, label="damage D = 1 - bonds / initial bonds")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(f"{os.path.basename(os.path.normpath(out))}: damage at t = {t:.4g} s "
-                 f"({len(radius)} discs)", fontsize=10)
+    ax.set_title(f"{run_name(out)}: damage at t = {t:.4g} s ({len(radius)} discs)", fontsize=10)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "damage.png"))
     plt.close(fig)
-    return pos, radius
 
 
-def plot_breaks(out, f, last):
-    if "breaks" not in f or "x_m" not in f["breaks"] or "mode" not in f["breaks"]:
-        print(f"{out}: no /breaks; breaks.png not written", file=sys.stderr)
-        return
-    b = f["breaks"]
-    n = min(len(b["x_m"]), len(b["y_m"]), len(b["mode"]))
-    x, y, mode = b["x_m"][:n], b["y_m"][:n], b["mode"][:n]
-    fig, ax = plt.subplots(figsize=(8, 5), dpi=100)
+def plot_breaks(out, d):
+    last = d.last[:2] if d.last is not None else None
+    if d.breaks is not None:
+        x, y, mode = d.breaks
+    else:
+        x, y, mode = np.zeros(0), np.zeros(0), np.zeros(0)
+    n = len(mode)
+    fig, ax = plt.subplots(figsize=(8, 5), dpi=dpi_for(last[1] if last is not None else ()))
     if last is not None:
         discs(ax, last[0], last[1], facecolors="0.88", edgecolors="0.75", linewidths=0.2)
         frame_extent(ax, *last)
@@ -201,7 +259,7 @@ def plot_breaks(out, f, last):
                    zorder=3)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(f"{os.path.basename(os.path.normpath(out))}: {n} bond breaks by mode "
+    ax.set_title(f"{run_name(out)}: {n} bond breaks, where they broke, by mode "
                  "(on the last frame's discs)", fontsize=10)
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
@@ -220,15 +278,19 @@ def plot_run(out):
             summary = json.load(s)
     except (OSError, ValueError):
         pass
-    with h5py.File(h5, "r") as f:
-        scene = f.attrs.get("scene", "")
-        if isinstance(scene, bytes):
-            scene = scene.decode()
-        tool = tool_block(scene)
-        ts = read_timeseries(f)
-        plot_force(out, ts, tool, summary)
-        last = plot_damage(out, f, ts, tool)
-        plot_breaks(out, f, last)
+    # A run that is writing run.h5 may leave it briefly inconsistent: try again a few times.
+    for attempt in range(5):
+        try:
+            d = load(h5)
+            break
+        except (OSError, KeyError, ValueError):
+            if attempt == 4:
+                raise
+            time.sleep(1.0)
+    tool = tool_block(d.scene)
+    plot_force(out, d.ts, tool, summary)
+    plot_damage(out, d, tool)
+    plot_breaks(out, d)
     print(f"{out}: wrote " + ", ".join(
         p for p in ("force.png", "damage.png", "breaks.png") if os.path.exists(os.path.join(out, p))))
     return True

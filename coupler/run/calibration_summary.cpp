@@ -70,13 +70,18 @@ bool CalibrationSummary::slopes_near_half_peak(const std::vector<Sample>& sample
 
 void CalibrationSummary::write(Summary& summary) const {
   if (!active_ || samples_.empty()) return;
-  const double peak = failure_peak(samples_)->load;
   if (!ucs_) {
+    // The splitting load is the largest platen force of the test: the disc's flat contacts crush
+    // locally first (the load drops and rises again as the contact widens), and after the split
+    // the halves carry little.
+    double peak = 0.0;
+    for (const Sample& s : samples_) peak = std::max(peak, s.load);
     // BTS = 2 F / (pi D t), F per unit thickness, t = 1 m.
     summary.set("bts_pa", 2.0 * peak / (std::numbers::pi * diameter_m_));
     summary.set("peak_force_n_per_m", peak);
     return;
   }
+  const double peak = failure_peak(samples_)->load;
   summary.set("ucs_pa", peak);
   double e = 0.0, lateral = 0.0;
   if (slopes_near_half_peak(samples_, 0.4, 0.6, e, lateral)) {

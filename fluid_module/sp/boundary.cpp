@@ -45,7 +45,7 @@ BoundaryCounts classify_boundary(std::span<const double> div_r, std::span<const 
       if (sides.sealed[s]) {
         faces_sealed = faces_sealed || distance[s] < h_m;
       } else {
-        faces_open = faces_open || distance[s] < 2.0 * radius[i];
+        faces_open = faces_open || distance[s] < radius[i];
       }
     }
     const bool drained = faces_open || (!faces_sealed && any_open);

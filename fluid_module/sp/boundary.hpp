@@ -7,8 +7,10 @@
 // Walls are the sealed sides of the initial bounding box of the particle centres. A surface
 // particle faces a side when its outward normal (Lucy's gradient of the constant 1,
 // Geometry::normal) is within 60 degrees of the side's and it lies close to it: within h of a
-// sealed side (the whole surface layer along a wall), within its own diameter of an open side
-// (the outer layer of the free surface itself). Then:
+// sealed side (the whole surface layer along a wall), within its own radius of an open side (the
+// outer layer of the free surface itself: a disc touching the free surface has its centre at most
+// r_max - r_min from the box of the centres, the next layer lies about a diameter further in).
+// Then:
 //  - facing an open side: drained, also where it faces a wall too (the corner particle between a
 //    wall and the free surface drains);
 //  - facing a sealed side (and no open one): sealed;

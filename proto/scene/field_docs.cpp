@@ -81,7 +81,7 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
     {"rockcut.Fluid.prescribed_gradient",
      "Parameters of the `prescribed_gradient` model."},
     {"rockcut.Fluid.sealed_sides",
-     "Sides of the initial bounding box of the particle centres that are sealed (walls). A surface particle within h of a side whose outward normal points to that side (within 60 degrees) faces it: facing only sealed sides it keeps the natural no-flux condition; every other surface particle meets free water and is held at p_hydro. With all four sides sealed nothing drains."},
+     "Sides of the initial bounding box of the particle centres that are sealed (walls). A surface particle whose outward normal points to a side (within 60 degrees) faces it if it lies within h of it (sealed side) or within its diameter (open side). Facing a sealed side and no open one, it keeps the natural no-flux condition; every other surface particle meets free water and is held at p_hydro. With all four sides sealed nothing drains."},
     {"rockcut.Fluid.smoothing_length_m",
      "Smoothing length h: the support radius of the Wendland C2 kernel (eq. 18). It should be at least 2.5 mean particle spacings, or the surface detection of eq. 24 marks interior particles."},
     {"rockcut.Fluid.strain_from",

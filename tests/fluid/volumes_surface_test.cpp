@@ -134,5 +134,30 @@ TEST(Surface, SealedSidesKeepNoFluxAndTheRestDrains) {
   for (Boundary x : classify({true, true, true, true})) EXPECT_NE(x, Boundary::drained);
 }
 
+TEST(Surface, OnlyTheFreeSurfaceDrainsWhenTheSurfaceLayerIsThickNearCorners) {
+  // h = 4 spacings: near the corners div r <= 1.5 marks two layers. The second layer along a wall
+  // faces the wall (within h) and not the free surface (farther than a diameter): it is sealed.
+  // Only the top row drains.
+  const int n = 14;
+  const Particles p = lattice(n, n, 0.0006, 0.0003);
+  sp::ExplicitModel model(table1(4 * 0.0006, {true, true, true, false}));
+  model.initialise({p.radius, p.position});
+  int drained = 0, surface_below_top = 0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const Boundary b = model.boundary()[j * n + i];
+      if (j == n - 1) {
+        EXPECT_EQ(b, Boundary::drained) << i;
+      } else {
+        EXPECT_NE(b, Boundary::drained) << i << ", " << j;
+        surface_below_top += b != Boundary::interior && j == n - 2 && i > 0 && i < n - 1;
+      }
+      drained += b == Boundary::drained;
+    }
+  }
+  EXPECT_EQ(drained, n);
+  EXPECT_GT(surface_below_top, 0);  // the thick layer exists: this test exercises the rule
+}
+
 }  // namespace
 }  // namespace rockcut::fluid::test

@@ -41,6 +41,20 @@ void RunSession::loop() {
   }
 }
 
+namespace {
+// A module is declared stalled when it does not answer within coupling.timeout_s plus the time its
+// work may take at a throughput far below anything measured (1e6 particle-steps/s, 20-50 times
+// below bench_dem on one core): large or loaded runs are not killed for being slow.
+constexpr double kSlowestParticleStepsPerS = 1e6;
+}  // namespace
+
+std::chrono::milliseconds RunSession::allowance(std::uint64_t steps) const {
+  const double work_s =
+      static_cast<double>(steps) * dem_.init.particle_count() / kSlowestParticleStepsPerS;
+  return std::chrono::milliseconds(
+      static_cast<long long>((scene_.coupling().timeout_s() + work_s) * 1000.0));
+}
+
 void RunSession::exchange(unsigned steps, bool initial) {
   // 1. DEM: N-1 full steps, then half kick and drift; answers x^{n+N}, v^{n+N-1/2}.
   request_.clear();
@@ -48,6 +62,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
   advance->set_steps(steps);
   advance->set_dt_s(plan_.dt_s);
   advance->set_split_last(true);
+  dem_.link->set_timeout(allowance(steps));
   dem_.link->request(request_, reply_);
   if (!reply_.envelope.has_kinematics()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered Advance without Kinematics");
@@ -87,6 +102,7 @@ void RunSession::advance_dry(unsigned steps) {
   advance->set_steps(steps);
   advance->set_dt_s(plan_.dt_s);
   advance->set_split_last(false);
+  dem_.link->set_timeout(allowance(steps));
   dem_.link->request(request_, reply_);
   if (!reply_.envelope.has_step_report()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered Advance without StepReport");

@@ -71,6 +71,8 @@ class RunSession {
   void loop();
   void exchange(unsigned steps, bool initial);
   void advance_dry(unsigned steps);
+  /// How long the DEM may take to answer an Advance of `steps` steps.
+  std::chrono::milliseconds allowance(std::uint64_t steps) const;
   void record_step_report(const wire::StepReport& report);
   void maybe_record(bool force_frame);
   void write_frame();

@@ -3,6 +3,7 @@
 //   coupler validate CASE [--set path=value ...]
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
@@ -40,6 +41,8 @@ int validate(const fs::path& scene_path, const std::vector<std::string>& overrid
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The inproc transport runs the DEM's OpenMP team inside this process: see dem_module/app.
+  setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
   CLI::App app{"rockcut coupler: runs discrete-element rock cutting coupled to a pore-pressure "
                "model (Helmons, Miedema & van Rhee). Exit codes: 0 ok, 1 verification failed, "
                "2 bad scene or refused settings, 3 a module failed, 128+N stopped by signal N."};

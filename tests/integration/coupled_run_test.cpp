@@ -8,6 +8,7 @@
 
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
+#include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
 
 namespace rockcut::test {
@@ -17,24 +18,6 @@ namespace fs = std::filesystem;
 using coupler::Summary;
 
 const std::string kPressureGradient = source("cases/verification/pressure_gradient.pbtxt");
-
-double number(const Summary& s, const std::string& key) {
-  const auto v = s.get(key);
-  if (!v) throw std::runtime_error("summary lacks " + key);
-  if (auto d = std::get_if<double>(&*v)) return *d;
-  if (auto i = std::get_if<std::int64_t>(&*v)) return static_cast<double>(*i);
-  throw std::runtime_error(key + " is not a number");
-}
-
-std::string text(const Summary& s, const std::string& key) {
-  const auto v = s.get(key);
-  if (!v || !std::holds_alternative<std::string>(*v)) return "";
-  return std::get<std::string>(*v);
-}
-
-bool bit_identical(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
 
 // Runs the pressure-gradient scene over `transport` and returns the output directory.
 fs::path run_pressure_gradient(const std::string& transport, std::string* err = nullptr) {

@@ -11,6 +11,7 @@
 
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
+#include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
 
 namespace rockcut::test {
@@ -35,24 +36,6 @@ const std::vector<std::string> kSmallCut = {
 // process starts, or the DEM when it answers Init with an error (a combination the schema cannot
 // check); the coupler then reports "refused by dem_module" (coupler/run/run_session.cpp).
 constexpr int kExitBadInput = 2;
-
-double number(const Summary& s, const std::string& key) {
-  const auto v = s.get(key);
-  if (!v) throw std::runtime_error("summary.json lacks " + key);
-  if (auto d = std::get_if<double>(&*v)) return *d;
-  if (auto i = std::get_if<std::int64_t>(&*v)) return static_cast<double>(*i);
-  throw std::runtime_error(key + " is not a number");
-}
-
-std::string text(const Summary& s, const std::string& key) {
-  const auto v = s.get(key);
-  if (!v || !std::holds_alternative<std::string>(*v)) return "";
-  return std::get<std::string>(*v);
-}
-
-bool bit_identical(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
 
 struct CutRun {
   fs::path out;

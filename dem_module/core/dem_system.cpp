@@ -47,7 +47,7 @@ DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet b
   }
   if (has_pairs_) rebuild_neighbours();
   compute_internal_forces();
-  finish_forces();
+  finish_forces(0.0);
 }
 
 void DemSystem::rebuild_neighbours() {
@@ -60,28 +60,15 @@ void DemSystem::rebuild_neighbours() {
   ++rebuilds_;
 }
 
-void DemSystem::half_kick(double dt) {
+void DemSystem::kick_drift(double dt, bool kick) {
   const std::size_t n = particles_.size();
+  double* x = particles_.position.data();
   double* v = particles_.velocity.data();
   double* w = particles_.angular_velocity.data();
   const double* f = particles_.force.data();
   const double* q = particles_.torque.data();
-  const double* inv_m = particles_.inv_mass.data();
   const double* inv_i = particles_.inv_inertia.data();
   const double h = 0.5 * dt;
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1)
-  for (std::size_t i = 0; i < n; ++i) {
-    v[2 * i] += h * f[2 * i] * inv_m[i];
-    v[2 * i + 1] += h * f[2 * i + 1] * inv_m[i];
-    w[i] += h * q[i] * inv_i[i];
-  }
-}
-
-void DemSystem::drift(double dt) {
-  const std::size_t n = particles_.size();
-  double* x = particles_.position.data();
-  const double* v = particles_.velocity.data();
-  const double* w = particles_.angular_velocity.data();
   const double* fe = particles_.external_force.data();
   const double* inv_m = particles_.inv_mass.data();
   const double* fd = damping_force_.empty() ? nullptr : damping_force_.data();
@@ -94,6 +81,11 @@ void DemSystem::drift(double dt) {
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1) \
     reduction(max : vmax2) reduction(+ : work, damping)
   for (std::size_t i = 0; i < n; ++i) {
+    if (kick) {  // eq. 6, fused with the drift: one pass over the particles
+      v[2 * i] += h * f[2 * i] * inv_m[i];
+      v[2 * i + 1] += h * f[2 * i + 1] * inv_m[i];
+      w[i] += h * q[i] * inv_i[i];
+    }
     const double vx = v[2 * i], vy = v[2 * i + 1];
     x[2 * i] += dt * vx;
     x[2 * i + 1] += dt * vy;
@@ -179,14 +171,16 @@ void DemSystem::compute_internal_forces() {
   }
 }
 
-void DemSystem::finish_forces() {
+void DemSystem::finish_forces(double kick_dt) {
   const std::size_t n = particles_.size();
   double* f = particles_.force.data();
   double* q = particles_.torque.data();
   const double* fe = particles_.external_force.data();
-  const double* v = particles_.velocity.data();
-  const double* w = particles_.angular_velocity.data();
+  double* v = particles_.velocity.data();
+  double* w = particles_.angular_velocity.data();
   const double* inv_m = particles_.inv_mass.data();
+  const double* inv_i = particles_.inv_inertia.data();
+  const double kick = 0.5 * kick_dt;
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
   const double alpha = settings_.local_damping;
   if (alpha > 0) damping_force_.resize(3 * n);
@@ -218,6 +212,11 @@ void DemSystem::finish_forces() {
     f[2 * i] = fx;
     f[2 * i + 1] = fy;
     q[i] = tq;
+    if (kick_dt > 0) {  // eq. 8, fused: v^{n+1} = v^{n+1/2} + a^{n+1} dt/2
+      v[2 * i] += kick * fx * inv_m[i];
+      v[2 * i + 1] += kick * fy * inv_m[i];
+      w[i] += kick * tq * inv_i[i];
+    }
   }
   ledger_.damping_j += damping;
   ledger_.external_work_j += work;
@@ -226,20 +225,15 @@ void DemSystem::finish_forces() {
 void DemSystem::step(double dt) {
   begin_step(dt);
   compute_internal_forces();
-  finish_forces();
-  if (!settings_.prescribed_motion) half_kick(dt);
+  finish_forces(settings_.prescribed_motion ? 0.0 : dt);
   in_split_step_ = false;
 }
 
 void DemSystem::begin_step(double dt) {
   if (in_split_step_) throw std::logic_error("begin_step inside a split step");
   dt_last_ = dt;
-  if (settings_.prescribed_motion) {
-    set_prescribed_velocity(time_s_ + 0.5 * dt);  // v^{n+1/2} of the field
-  } else {
-    half_kick(dt);
-  }
-  drift(dt);
+  if (settings_.prescribed_motion) set_prescribed_velocity(time_s_ + 0.5 * dt);  // v^{n+1/2}
+  kick_drift(dt, !settings_.prescribed_motion);
   time_s_ += dt;
   ++steps_;
   internal_forces_current_ = false;
@@ -248,12 +242,13 @@ void DemSystem::begin_step(double dt) {
 
 void DemSystem::finish_step(double dt, std::span<const double> external) {
   if (!in_split_step_) throw std::logic_error("finish_step without begin_step");
-  set_external_force(external);
-  if (!settings_.prescribed_motion) half_kick(dt);
+  hold_external_force(external);
+  if (!internal_forces_current_) compute_internal_forces();
+  finish_forces(settings_.prescribed_motion ? 0.0 : dt);
   in_split_step_ = false;
 }
 
-void DemSystem::set_external_force(std::span<const double> external) {
+void DemSystem::hold_external_force(std::span<const double> external) {
   if (external.size() != particles_.external_force.size()) {
     throw std::invalid_argument("external force has " + std::to_string(external.size()) +
                                 " values for " + std::to_string(particles_.size()) + " particles");
@@ -262,10 +257,14 @@ void DemSystem::set_external_force(std::span<const double> external) {
   if (!has_body_forces_) {
     has_body_forces_ = std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
   }
+}
+
+void DemSystem::set_external_force(std::span<const double> external) {
+  hold_external_force(external);
   // At rest (t = 0) a^n is re-evaluated from scratch; inside a split step the internal forces at
   // x^{n+1} may already have been computed while the fluid worked.
   if (!in_split_step_ || !internal_forces_current_) compute_internal_forces();
-  finish_forces();
+  finish_forces(0.0);
 }
 
 double DemSystem::kinetic_energy() const {

@@ -74,12 +74,15 @@ class DemSystem {
   double strain_energy() const;
 
  private:
-  void half_kick(double dt);
-  void drift(double dt);
+  /// Eq. 6 (if `kick`) and eq. 5 in one pass; adds the F^n halves of the work trapezoids.
+  void kick_drift(double dt, bool kick);
   /// Prescribed motion: the velocity of the field at the mid-step time t (replaces the kicks).
   void set_prescribed_velocity(double t);
-  /// total force = internal + external, then local damping (eq. 10); accumulates work terms.
-  void finish_forces();
+  /// total force = internal + external, then local damping (eq. 10); accumulates work terms;
+  /// with kick_dt > 0 also the second half kick (eq. 8) in the same pass.
+  void finish_forces(double kick_dt);
+  /// Copies the fluid force into the held external force.
+  void hold_external_force(std::span<const double> external);
   void rebuild_neighbours();
 
   Particles particles_;

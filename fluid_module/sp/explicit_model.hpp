@@ -3,11 +3,11 @@
 //
 // Stability: forward Euler on the eq. 20 Laplacian is stable while dt D rho <= 2, where rho is the
 // spectral radius of the discrete Laplacian; rho h^2 depends only weakly on the packing.
-// tests/fluid/stability_test.cpp measures C_crit = 2 / (rho h^2) by power iteration on lattices and
-// random packings with h / spacing from 2 to 5: C_crit lies between 0.063 and 0.093, smallest at
-// the largest h / spacing, where the operator approaches its continuum limit. The model uses
-// C = 0.05, 20 % below the smallest measured value, reports dt <= C h^2 / D in the handshake (so
-// the coupler chooses its fluid step from it) and refuses a longer step.
+// tests/fluid/laplacian_stability_test.cpp measures C_crit = 2 / (rho h^2) by power iteration on
+// lattices and random packings with h / spacing from 2 to 5: C_crit lies between 0.063 and 0.093,
+// smallest at the largest h / spacing, where the operator approaches its continuum limit. The
+// model uses C = 0.05, 21 % below the smallest measured value, reports dt <= C h^2 / D in the
+// handshake (so the coupler chooses its fluid step from it) and refuses a longer step.
 #pragma once
 
 #include "sp/pore_pressure_model.hpp"

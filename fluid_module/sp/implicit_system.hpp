@@ -17,6 +17,10 @@
 // at p = p_min". It is solved by a primal-dual active set: clamp the particles that the solve
 // takes below p_min, release clamped particles whose unconstrained equation would raise them
 // (positive residual), and repeat until the set no longer changes (docs/fluid_model.md).
+//
+// Memory: the matrix pattern is rebuilt only when the neighbour lists are; each step writes its
+// values in place. Eigen's conjugate gradient allocates its four work vectors once per solve (per
+// step, never per particle).
 #pragma once
 
 #include <cstdint>

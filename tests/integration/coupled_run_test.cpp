@@ -104,7 +104,11 @@ TEST(CoupledRun, DrySceneStartsNoFluidProcessAndIsExact) {
   std::vector<std::string> seen;
   std::optional<int> code;
   while (!(code = wait_exit(s.pid, std::chrono::milliseconds(2)))) {
-    for (pid_t kid : children_of(s.pid)) seen.push_back(command_name(kid));
+    for (pid_t kid : children_of(s.pid)) {
+      // A child between fork and exec still carries the coupler's name.
+      const std::string name = command_name(kid);
+      if (name != "coupler") seen.push_back(name);
+    }
   }
   EXPECT_EQ(*code, 0) << read_file(s.err_file);
   for (const std::string& name : seen) EXPECT_EQ(name, "dem_module");

@@ -10,6 +10,7 @@
 
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
+#include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
 
 namespace rockcut::test {
@@ -20,14 +21,6 @@ using coupler::Summary;
 
 constexpr double kPHydro = 101325.0;  // p_atm, water depth 0
 constexpr double kD = 2e9 * 1e-14 / 1e-3;  // Table 1: M kappa / mu [m^2/s]
-
-double number(const Summary& s, const std::string& key) {
-  const auto v = s.get(key);
-  if (!v) throw std::runtime_error("summary lacks " + key);
-  if (auto d = std::get_if<double>(&*v)) return *d;
-  if (auto i = std::get_if<std::int64_t>(&*v)) return static_cast<double>(*i);
-  throw std::runtime_error(key + " is not a number");
-}
 
 struct CaseRun {
   int code = -1;

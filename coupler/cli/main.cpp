@@ -11,6 +11,7 @@
 
 #include "run/run_session.hpp"
 #include "scene/scene_loader.hpp"
+#include "wire/module_main.hpp"
 
 namespace {
 
@@ -43,6 +44,7 @@ int validate(const fs::path& scene_path, const std::vector<std::string>& overrid
 int main(int argc, char** argv) {
   // The inproc transport runs the DEM's OpenMP team inside this process: see dem_module/app.
   setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
+  rockcut::wire::tune_allocator_for_bulk_frames();
   CLI::App app{"rockcut coupler: runs discrete-element rock cutting coupled to a pore-pressure "
                "model (Helmons, Miedema & van Rhee). Exit codes: 0 ok, 1 verification failed, "
                "2 bad scene or refused settings, 3 a module failed, 128+N stopped by signal N."};

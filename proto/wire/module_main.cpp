@@ -1,12 +1,20 @@
 #include "wire/module_main.hpp"
 
+#include <malloc.h>
+
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
 namespace rockcut::wire {
 
+void tune_allocator_for_bulk_frames() {
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);  // blocks below 256 MiB come from the heap
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);    // and the heap is not trimmed below 1 GiB of free space
+}
+
 int module_main(int argc, char** argv, ModuleHandler& handler) {
+  tune_allocator_for_bulk_frames();
   CLI::App app{handler.name() + " " + handler.version() +
                ": a rockcut module. Normally started by `coupler run`; start it by hand to attach "
                "a coupler over tcp (`coupler run CASE --transport tcp ...`)."};

@@ -145,7 +145,6 @@ void DemSystem::compute_internal_forces() {
       q[i] = 0.0;
     }
     if (has_pairs_) {
-      if (t > 0) buffers_.zero(t);
 #pragma omp barrier
       const ForceView out = buffers_.view(t, particles_);
       const auto [b0, b1] = share(bonds_.size(), t, threads);

@@ -16,13 +16,13 @@ struct ForceView {
 
 class ForceBuffers {
  public:
-  /// Sizes the buffers for `threads` threads and n particles (allocates only when they grow).
+  /// Sizes the buffers for `threads` threads and n particles; new buffers are zero, and reduce()
+  /// leaves them zero again (allocates only when the size changes).
   void resize(int threads, std::size_t n);
-  /// Zeroes thread t's private buffer (t >= 1); each thread zeroes its own.
-  void zero(int thread);
   ForceView view(int thread, Particles& p);
-  /// Adds every private buffer into the particle arrays for particles [begin, end).
-  void reduce(Particles& p, std::size_t begin, std::size_t end) const;
+  /// Adds every private buffer into the particle arrays for particles [begin, end), and zeroes
+  /// those buffer entries.
+  void reduce(Particles& p, std::size_t begin, std::size_t end);
   int threads() const { return threads_; }
 
  private:

@@ -22,9 +22,6 @@ class CellGrid {
   template <typename F>
   void for_each_neighbour_of(std::uint32_t i, F&& f) const;
 
-  int cells_x() const { return nx_; }
-  int cells_y() const { return ny_; }
-
  private:
   int cell_of(double x, double y) const;
 

@@ -36,10 +36,8 @@ ChipStats chip_stats(const Particles& p, const BondSet& bonds) {
   for (std::uint32_t i = 0; i < n; ++i) {
     if (size[i] > size[largest]) largest = i;
   }
-  s.largest_cluster = n ? size[largest] : 0;
   double total = 0.0;
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (size[i] == 1) ++s.free_discs;
     if (size[i] < 2 || i == largest) continue;
     ++s.chips;
     total += area[i];

@@ -13,8 +13,6 @@ namespace rockcut::dem {
 struct ChipStats {
   std::size_t chips = 0;          ///< clusters of >= 2 discs other than the largest
   double mean_area_m2 = 0.0;      ///< mean solid area of a chip (sum of pi r^2) [m^2 per m]
-  std::size_t largest_cluster = 0;
-  std::size_t free_discs = 0;     ///< discs with no bond left
 };
 
 ChipStats chip_stats(const Particles& p, const BondSet& bonds);

@@ -56,7 +56,7 @@ void DemSystem::rebuild_neighbours() {
     contacts_.rebuild(particles_, bonds_, settings_.skin_m, grid_);
   }
   if (!walls_.empty()) walls_.rebuild(particles_, settings_.skin_m);
-  max_drift2_m2_ = 0.0;
+  max_drift_m_ = 0.0;
   ++rebuilds_;
 }
 
@@ -98,8 +98,7 @@ void DemSystem::kick_drift(double dt, bool kick) {
   ledger_.external_work_j += work;
   ledger_.damping_j += damping;
   // A bound on how far any disc moved since the rebuild: sum of the largest step lengths.
-  const double moved = std::sqrt(max_drift2_m2_) + std::sqrt(vmax2) * dt;
-  max_drift2_m2_ = moved * moved;
+  max_drift_m_ += std::sqrt(vmax2) * dt;
   walls_.move(dt);
 }
 
@@ -120,7 +119,7 @@ void DemSystem::set_prescribed_velocity(double t) {
 void DemSystem::compute_internal_forces() {
   internal_forces_current_ = true;
   const std::size_t n = particles_.size();
-  if (has_pairs_ && std::sqrt(max_drift2_m2_) + walls_.displacement_since_rebuild() >
+  if (has_pairs_ && max_drift_m_ + walls_.displacement_since_rebuild() >
                         0.5 * settings_.skin_m) {
     rebuild_neighbours();
   }

@@ -96,7 +96,7 @@ class DemSystem {
   std::vector<BondBreak> breaks_;
   std::vector<std::uint32_t> freed_pairs_;
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
-  double max_drift2_m2_ = 0.0;  ///< largest squared displacement since the last rebuild
+  double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;
   double time_s_ = 0.0;
   std::uint64_t steps_ = 0;

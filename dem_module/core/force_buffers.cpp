@@ -5,7 +5,6 @@
 namespace rockcut::dem {
 
 void ForceBuffers::resize(int threads, std::size_t n) {
-  threads_ = threads;
   force_.resize(threads > 1 ? threads - 1 : 0);
   torque_.resize(force_.size());
   for (std::size_t t = 0; t < force_.size(); ++t) {

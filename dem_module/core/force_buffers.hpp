@@ -23,10 +23,8 @@ class ForceBuffers {
   /// Adds every private buffer into the particle arrays for particles [begin, end), and zeroes
   /// those buffer entries.
   void reduce(Particles& p, std::size_t begin, std::size_t end);
-  int threads() const { return threads_; }
 
  private:
-  int threads_ = 1;
   std::vector<std::vector<double>> force_, torque_;
 };
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 namespace rockcut::dem {
 
@@ -56,10 +55,14 @@ double WallSet::displacement_since_rebuild() const {
 }
 
 void WallSet::rebuild(const Particles& p, double skin_m) {
-  std::map<std::uint64_t, double> history;
+  // Keep the tangential history of the pairs that carry one (the list is in (segment, particle)
+  // order, so the keys come out sorted); member buffers: no allocation in steady state.
+  old_keys_.clear();
+  old_shear_.clear();
   for (std::size_t k = 0; k < particle_.size(); ++k) {
     if (shear_force_[k] != 0.0) {
-      history[(static_cast<std::uint64_t>(particle_[k]) << 32) | segment_[k]] = shear_force_[k];
+      old_keys_.push_back((static_cast<std::uint64_t>(segment_[k]) << 32) | particle_[k]);
+      old_shear_.push_back(shear_force_[k]);
     }
   }
   particle_.clear();
@@ -83,8 +86,11 @@ void WallSet::rebuild(const Particles& p, double skin_m) {
       if (dx * dx + dy * dy > reach * reach) continue;
       particle_.push_back(i);
       segment_.push_back(s);
-      const auto it = history.find((static_cast<std::uint64_t>(i) << 32) | s);
-      shear_force_.push_back(it == history.end() ? 0.0 : it->second);
+      const std::uint64_t key = (static_cast<std::uint64_t>(s) << 32) | i;
+      const auto it = std::lower_bound(old_keys_.begin(), old_keys_.end(), key);
+      shear_force_.push_back(it != old_keys_.end() && *it == key
+                                 ? old_shear_[static_cast<std::size_t>(it - old_keys_.begin())]
+                                 : 0.0);
     }
   }
 }

@@ -52,6 +52,8 @@ class WallSet {
   std::vector<double> offset_at_rebuild_;  // 2 per body
   std::vector<std::uint32_t> particle_, segment_;
   std::vector<double> shear_force_;
+  std::vector<std::uint64_t> old_keys_;  // rebuild scratch
+  std::vector<double> old_shear_;
 };
 
 }  // namespace rockcut::dem

@@ -115,7 +115,7 @@ void run(benchmark::State& state, sp::PorePressureModel& model, double dt, doubl
   const std::size_t n = p.radius.size();
   std::vector<double> x = p.position, d(2 * n, 0.0), v(2 * n, 0.0), force(2 * n);
   model.initialise({p.radius, p.position});
-  model.step(0.0, 0.0, {x, v, d}, force);
+  model.step(0.0, 0.0, {x, v, d, {}}, force);
   double t = 0.0;
   const std::uint64_t builds0 = model.neighbour_list().builds();
   for (auto _ : state) {
@@ -128,7 +128,7 @@ void run(benchmark::State& state, sp::PorePressureModel& model, double dt, doubl
       }
     }
     t += dt;
-    model.step(dt, t, {x, v, d}, force);
+    model.step(dt, t, {x, v, d, {}}, force);
     benchmark::DoNotOptimize(force.data());
   }
   per_particle(state, n);

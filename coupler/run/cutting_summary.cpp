@@ -14,8 +14,9 @@ const double* find(const std::vector<std::pair<std::string, double>>& scalars,
 }
 }  // namespace
 
-CuttingSummary::CuttingSummary(const rockcut::Scene& scene) {
+CuttingSummary::CuttingSummary(const rockcut::Scene& scene, std::vector<std::string> node_names) {
   if (!scene.dem().has_tool()) return;
+  for (std::string& name : node_names) nodes_.push_back({std::move(name)});
   const rockcut::Tool& tool = scene.dem().tool();
   active_ = true;
   steady_after_m_ = tool.steady_after_m() > 0 ? tool.steady_after_m() : 2.0 * tool.cutting_depth_m();
@@ -32,6 +33,13 @@ void CuttingSummary::observe(const std::vector<std::pair<std::string, double>>& 
   sum_x_ += -*fx;
   sum_y_ += *fy;
   ++samples_;
+  for (NodeMean& node : nodes_) {
+    const double* p = find(scalars, "fluid_probe_" + node.name + "_pa");
+    const double* n = find(scalars, "fluid_probe_" + node.name + "_particles");
+    if (!p || !n || *n < 1) continue;
+    node.sum_pa += *p;
+    ++node.samples;
+  }
 }
 
 void CuttingSummary::write(Summary& summary) const {
@@ -48,6 +56,11 @@ void CuttingSummary::write(Summary& summary) const {
     if (const double* v = find(last_, key)) summary.set(key, static_cast<std::int64_t>(*v));
   }
   if (const double* v = find(last_, "chip_area_mean_m2")) summary.set("chip_area_mean_m2", *v);
+  for (const NodeMean& node : nodes_) {
+    summary.set("pressure_" + node.name + "_mean_pa",
+                node.samples ? node.sum_pa / static_cast<double>(node.samples) : 0.0);
+    summary.set("pressure_" + node.name + "_samples", static_cast<std::int64_t>(node.samples));
+  }
 }
 
 }  // namespace rockcut::coupler

@@ -7,6 +7,9 @@
 // Signs: `force_horizontal_mean_n_per_m` is the force resisting the cut (-F_x of the rock on the
 // tool), `force_vertical_mean_n_per_m` the vertical force of the rock on the tool, positive
 // upwards (the paper's figure 8 convention: the tool must be pushed down into the rock).
+// Pressure nodes (coupled scenes): pressure_<node>_mean_pa is the mean over the steady samples of
+// the node's average p - p_hydro (fluid_probe_<node>_pa), over the samples in which the node
+// held at least one particle centre; pressure_<node>_samples counts them.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +24,8 @@ namespace rockcut::coupler {
 
 class CuttingSummary {
  public:
-  explicit CuttingSummary(const rockcut::Scene& scene);
+  /// `node_names`: the pressure nodes whose probes the fluid reports (may be empty).
+  CuttingSummary(const rockcut::Scene& scene, std::vector<std::string> node_names);
   bool active() const { return active_; }
   /// One time-series sample of the DEM's scalars (sorted by name).
   void observe(const std::vector<std::pair<std::string, double>>& scalars);
@@ -33,6 +37,12 @@ class CuttingSummary {
   double width_m_ = 0.0;
   double sum_x_ = 0.0, sum_y_ = 0.0;
   std::uint64_t samples_ = 0;
+  struct NodeMean {
+    std::string name;
+    double sum_pa = 0.0;
+    std::uint64_t samples = 0;
+  };
+  std::vector<NodeMean> nodes_;
   std::vector<std::pair<std::string, double>> last_;
 };
 

@@ -11,6 +11,8 @@ namespace rockcut::coupler {
 void RunSession::loop() {
   next_series_step_ = 0;
   next_frame_index_ = 0;
+  dem_busy0_s_ = dem_busy_s_;
+  fluid_busy0_s_ = fluid_busy_s_;
 
   if (coupled_) {
     exchange(0, true);  // t = 0: a^0 includes the fluid force
@@ -67,7 +69,9 @@ void RunSession::exchange(unsigned steps, bool initial) {
   if (!reply_.envelope.has_kinematics()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered Advance without Kinematics");
   }
-  const double t = reply_.envelope.kinematics().time_s();
+  const wire::Kinematics& kinematics = reply_.envelope.kinematics();
+  const double t = kinematics.time_s();
+  dem_busy_s_ = reply_.envelope.busy_s();
 
   // 2. Fluid: advance the pressure by N dt (nothing at t = 0) and return the forces. The DEM
   //    computes its contact forces meanwhile. Arrays are forwarded, not copied.
@@ -75,9 +79,18 @@ void RunSession::exchange(unsigned steps, bool initial) {
   wire::FluidStep* fs = fluid_request_.envelope.mutable_fluid_step();
   fs->set_dt_s(initial ? 0.0 : steps * plan_.dt_s);
   fs->set_time_s(t);
+  if (!nodes_.empty()) {
+    const auto tip_x = kinematics.scalars().find("tool_tip_x_m");
+    const auto tip_y = kinematics.scalars().find("tool_tip_y_m");
+    if (tip_x == kinematics.scalars().end() || tip_y == kinematics.scalars().end()) {
+      throw wire::ModuleFailure(dem_.link->label(), "reports no tool tip with its Kinematics");
+    }
+    place_probes(nodes_, tip_x->second, tip_y->second, *fs);
+  }
   bytes_exchanged_ += reply_.payload_bytes();
   fluid_request_.take_arrays(reply_);
   fluid_->link->request(fluid_request_, fluid_reply_);
+  fluid_busy_s_ = fluid_reply_.envelope.busy_s();
   bytes_exchanged_ += fluid_reply_.payload_bytes();
 
   // 3. DEM: total force at x^{n+N}, second half kick.
@@ -88,6 +101,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
   if (!reply_.envelope.has_step_report()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered ApplyForces without StepReport");
   }
+  dem_busy_s_ = reply_.envelope.busy_s();
   ++exchanges_;
   scalars_.clear();
   for (const auto& [name, value] : fluid_reply_.envelope.fluid_result().scalars()) {
@@ -107,6 +121,7 @@ void RunSession::advance_dry(unsigned steps) {
   if (!reply_.envelope.has_step_report()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered Advance without StepReport");
   }
+  dem_busy_s_ = reply_.envelope.busy_s();
   ++exchanges_;
   scalars_.clear();
   record_step_report(reply_.envelope.step_report());

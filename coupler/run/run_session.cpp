@@ -48,7 +48,11 @@ RunSession::RunSession(const RunOptions& options, scene::LoadedScene scene)
     : options_(options), loaded_(std::move(scene)), scene_(loaded_.scene) {
   coupled_ = scene_.has_fluid();
   if (options_.out_dir.empty()) options_.out_dir = fs::path("out") / loaded_.path.stem();
-  cutting_ = std::make_unique<CuttingSummary>(scene_);
+  nodes_ = pressure_nodes(scene_);
+  peclet_ = peclet_number(scene_);
+  std::vector<std::string> node_names;
+  for (const PressureNodeBox& n : nodes_) node_names.push_back(n.name);
+  cutting_ = std::make_unique<CuttingSummary>(scene_, node_names);
   calibration_ = std::make_unique<CalibrationSummary>(scene_);
   // A packing file named in the scene is relative to the scene file; the DEM gets it absolute.
   if (loaded_.scene.dem().has_packing_file()) {
@@ -149,6 +153,7 @@ void RunSession::init_modules() {
   fluid_request_.take_arrays(reply_);
   fluid_->link->request(fluid_request_, fluid_reply_);
   fluid_->init = fluid_reply_.envelope.init_reply();
+  fluid_busy_s_ = fluid_reply_.envelope.busy_s();
 
   // Subscribe the DEM to exactly the kinematics the fluid model needs: nothing else is sent.
   request_.clear();
@@ -162,6 +167,7 @@ void RunSession::init_modules() {
     }
     sub->add_fields(f);
   }
+  dem_busy_s_ = reply_.envelope.busy_s();
   for (const std::string& f : dem_.init.needs()) {
     if (!contains(fluid_->init.provides(), f)) {
       throw wire::ModuleFailure(dem_.link->label(), "needs \"" + f + "\", which fluid model " +
@@ -173,6 +179,12 @@ void RunSession::init_modules() {
 }
 
 void RunSession::check_frame_fields() {
+  // Pressure nodes need a fluid model with a pressure; others (prescribed_gradient, a third
+  // party's) run without them.
+  if (fluid_ && !contains(fluid_->init.provides(), std::string(wire::field::kPressure))) {
+    nodes_.clear();
+    cutting_ = std::make_unique<CuttingSummary>(scene_, std::vector<std::string>{});
+  }
   dem_logs_breaks_ = contains(dem_.init.provides(), "breaks") && scene_.dem().has_bonds();
   std::vector<std::string> wanted(scene_.output().frame_fields().begin(),
                                   scene_.output().frame_fields().end());
@@ -235,6 +247,16 @@ void RunSession::open_output() {
   summary_.set("dt_s", plan_.dt_s);
   summary_.set("coupling_interval", static_cast<std::int64_t>(plan_.coupling_interval));
   summary_.set("fluid_model", fluid_ ? fluid_->init.model() : std::string("none"));
+  if (fluid_) {
+    const rockcut::Fluid& f = scene_.fluid();
+    summary_.set("water_depth_m", scene_.water_depth_m());
+    summary_.set("hydrostatic_pressure_pa", f.atmospheric_pressure_pa() + f.water_density_kg_m3() *
+                                                f.gravity_m_s2() * scene_.water_depth_m());
+  }
+  if (peclet_) {
+    summary_.set("peclet_number", peclet_->value);
+    summary_.set("regime", peclet_->regime);
+  }
 }
 
 void RunSession::print_startup() const {
@@ -253,6 +275,19 @@ void RunSession::print_startup() const {
   }
   for (const std::string& note : dem_.init.notes()) std::fprintf(stderr, "dem        %s\n", note.c_str());
   for (const std::string& line : plan_.report) std::fprintf(stderr, "%s\n", line.c_str());
+  if (peclet_) {
+    std::fprintf(stderr,
+                 "peclet     Pe = v_c t_c / (4 D) = %.3g (D = M kappa / mu = %.3g m^2/s): %s "
+                 "regime (drained < 0.001 < transient < 10 < undrained)\n",
+                 peclet_->value, peclet_->diffusivity_m2_s, peclet_->regime.c_str());
+  }
+  if (fluid_) {
+    std::fprintf(stderr, "water      depth %.6g m, p_hydro %.6g Pa%s\n", scene_.water_depth_m(),
+                 scene_.fluid().atmospheric_pressure_pa() + scene_.fluid().water_density_kg_m3() *
+                     scene_.fluid().gravity_m_s2() * scene_.water_depth_m(),
+                 nodes_.empty() ? "" : (", " + std::to_string(nodes_.size()) +
+                                        " pressure nodes moving with the tool").c_str());
+  }
   std::fprintf(stderr, "output     %s\n", options_.out_dir.c_str());
 }
 
@@ -267,7 +302,8 @@ int RunSession::run() {
     }
     if (fluid_) {
       for (const auto& l : fluid_->init.limits()) {
-        fluid_limits.push_back({fluid_->hello.module_name(), l.name(), l.dt_max_s(), l.detail()});
+        fluid_limits.push_back(
+            {fluid_->hello.module_name(), l.name(), l.dt_max_s(), l.detail(), l.lag_only()});
       }
     }
     plan_ = plan_time(scene_, dem_limits, fluid_limits, coupled_);
@@ -341,6 +377,10 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
   summary_.set("wall_time_s", wall);
   summary_.set("particle_steps_per_s",
                wall > 0 ? static_cast<double>(dem_.init.particle_count()) * step_ / wall : 0.0);
+  // Where the wall time went: each module's own handling time during the loop; the rest is the
+  // transport, the coupler's output and waiting (the DEM's contact forces overlap the fluid).
+  summary_.set("dem_busy_s", dem_busy_s_ - dem_busy0_s_);
+  if (fluid_) summary_.set("fluid_busy_s", fluid_busy_s_ - fluid_busy0_s_);
   try {
     if (run_file_) {
       run_file_->set_attribute("status", reason.empty() ? status : status + ": " + reason);

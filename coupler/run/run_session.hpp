@@ -17,6 +17,8 @@
 #include "output/summary_json.hpp"
 #include "run/calibration_summary.hpp"
 #include "run/cutting_summary.hpp"
+#include "run/peclet.hpp"
+#include "run/pressure_nodes.hpp"
 #include "run/module_link.hpp"
 #include "run/progress.hpp"
 #include "run/time_plan.hpp"
@@ -92,6 +94,10 @@ class RunSession {
 
   std::unique_ptr<RunFile> run_file_;
   std::unique_ptr<CuttingSummary> cutting_;
+  std::vector<PressureNodeBox> nodes_;      // sent as probes when the fluid has a pressure
+  std::optional<PecletNumber> peclet_;
+  // Cumulative handling time of each module (Envelope.busy_s) at the start of the loop and now.
+  double dem_busy0_s_ = 0.0, dem_busy_s_ = 0.0, fluid_busy0_s_ = 0.0, fluid_busy_s_ = 0.0;
   std::unique_ptr<CalibrationSummary> calibration_;
   bool dem_logs_breaks_ = false;  // the DEM hands out its bond breaks with every frame
   Summary summary_;

@@ -63,38 +63,49 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
                     "set time.dt_s");
   }
 
+  plan.report.push_back("chosen dt = " + fmt(plan.dt_s) + " s (binding: " + plan.binding + ")");
   if (coupled) {
-    const double max_n = fluid_limit ? std::floor(fluid_limit->dt_max_s / plan.dt_s) : 1e9;
-    if (fluid_limit && max_n < 1) {
-      throw PlanError("the fluid limit " + fluid_limit->name + " (" + fmt(fluid_limit->dt_max_s) +
-                      " s) is below the DEM step " + fmt(plan.dt_s) + " s; lower time.dt_s");
+    // The largest N each fluid limit allows; the smallest of them binds. A lag-only limit (the
+    // pore fluid's stiffness) never forbids N = 1, where the fluid force does not lag.
+    double max_n = 1e9;
+    const Limit* binding = nullptr;
+    for (const Limit& l : fluid_limits) {
+      double n = std::floor(l.dt_max_s / plan.dt_s * (1.0 + 1e-9));
+      if (l.lag_only) n = std::max(n, 1.0);
+      if (n < 1) {
+        throw PlanError("the fluid limit " + l.name + " (" + fmt(l.dt_max_s) +
+                        " s) is below the DEM step " + fmt(plan.dt_s) + " s by " +
+                        fmt(plan.dt_s / l.dt_max_s) + "x; lower time.dt_s");
+      }
+      if (n < max_n) {
+        max_n = n;
+        binding = &l;
+      }
     }
     if (scene.coupling().has_interval()) {
       plan.coupling_interval = scene.coupling().interval();
       if (plan.coupling_interval > max_n) {
         throw PlanError("coupling.interval = " + std::to_string(plan.coupling_interval) +
                         " makes the fluid step " + fmt(plan.coupling_interval * plan.dt_s) +
-                        " s, above the " + fluid_limit->module + " limit " + fluid_limit->name +
-                        " (" + fmt(fluid_limit->dt_max_s) + " s) by " +
-                        fmt(plan.coupling_interval * plan.dt_s / fluid_limit->dt_max_s) +
+                        " s, above the " + binding->module + " limit " + binding->name + " (" +
+                        fmt(binding->dt_max_s) + " s) by " +
+                        fmt(plan.coupling_interval * plan.dt_s / binding->dt_max_s) +
                         "x; use coupling.interval <= " + fmt(max_n));
       }
     } else {
       // Without a fluid limit the paper's scheme (N = 1) is kept.
       plan.coupling_interval =
-          fluid_limit && !dt_from_fluid ? static_cast<unsigned>(std::min(max_n, 1e6)) : 1;
+          binding && !dt_from_fluid ? static_cast<unsigned>(std::min(max_n, 1e6)) : 1;
     }
-  }
-  plan.total_steps = static_cast<std::uint64_t>(std::ceil(time.end_time_s() / plan.dt_s - 1e-9));
-  plan.report.push_back("chosen dt = " + fmt(plan.dt_s) + " s (binding: " + plan.binding + ")");
-  if (coupled) {
-    plan.report.push_back("chosen coupling interval N = " + std::to_string(plan.coupling_interval) +
-                          ", fluid step " + fmt(plan.coupling_interval * plan.dt_s) + " s" +
-                          (scene.coupling().has_interval() ? " (set in the scene)"
-                           : dt_from_fluid ? " (fluid-only scene: one DEM step per fluid step)"
-                           : fluid_limit   ? " (binding: " + fluid_limit->name + ")"
+    plan.report.push_back(
+        "chosen coupling interval N = " + std::to_string(plan.coupling_interval) +
+        ", fluid step " + fmt(plan.coupling_interval * plan.dt_s) + " s" +
+        (scene.coupling().has_interval() ? " (set in the scene)"
+         : dt_from_fluid                 ? " (fluid-only scene: one DEM step per fluid step)"
+         : binding                       ? " (binding: " + binding->name + ")"
                                          : " (no fluid limit: the paper's N = 1)"));
   }
+  plan.total_steps = static_cast<std::uint64_t>(std::ceil(time.end_time_s() / plan.dt_s - 1e-9));
   plan.report.push_back("steps: " + std::to_string(plan.total_steps) + " to t = " +
                         fmt(time.end_time_s()) + " s");
   return plan;

@@ -17,7 +17,7 @@ const std::vector<std::string_view> kProvided = {
     wire::field::kPosition, wire::field::kVelocity,      wire::field::kVelocityHalf,
     wire::field::kDisplacement, wire::field::kRadius,    wire::field::kForce,
     wire::field::kExternalForce, "angular_velocity",     "damage",
-    "breaks"};
+    wire::field::kWallSegments,  "breaks"};
 
 }  // namespace
 
@@ -93,6 +93,11 @@ void DemService::advance(const wire::Advance& advance, wire::Message& reply) {
   wire::Kinematics* k = reply.envelope.mutable_kinematics();
   k->set_time_s(s.time_s());
   k->set_step(s.step_count());
+  if (setup_.tool.present) {
+    const WallBody& tool = s.walls().bodies()[setup_.tool.body];
+    (*k->mutable_scalars())["tool_tip_x_m"] = setup_.tool.tip_x0_m + tool.offset_x;
+    (*k->mutable_scalars())["tool_tip_y_m"] = setup_.tool.tip_y_m + tool.offset_y;
+  }
   for (const std::string& f : send_fields_) add_field(f, reply);
   if (std::find(send_fields_.begin(), send_fields_.end(), wire::field::kDisplacement) !=
       send_fields_.end()) {
@@ -145,6 +150,8 @@ void DemService::report(wire::Message& reply) {
       out["tool_force_y_n_per_m"] = body.force_y;
       const double tip_x = setup_.tool.tip_x0_m + body.offset_x;
       out["tool_travel_m"] = tip_x - setup_.tool.specimen_left_m;
+      out["tool_tip_x_m"] = tip_x;
+      out["tool_tip_y_m"] = setup_.tool.tip_y_m + body.offset_y;
       continue;
     }
     const std::string prefix = "wall_" + body.name + "_";
@@ -198,6 +205,17 @@ void DemService::add_field(std::string_view field, wire::Message& reply) {
       scratch_[k] = p.position[k] - position_at_exchange_[k];
     }
     return reply.add_array(field, scratch_, 2);
+  }
+  if (field == wire::field::kWallSegments) {
+    // Not per particle: the walls' and the tool's segments where they are now.
+    const WallSet& walls = setup_.system->walls();
+    scratch_.clear();
+    for (const Segment& seg : walls.segments()) {
+      const WallBody& b = walls.bodies()[seg.body];
+      scratch_.insert(scratch_.end(), {seg.ax + b.offset_x, seg.ay + b.offset_y,
+                                       seg.bx + b.offset_x, seg.by + b.offset_y});
+    }
+    return reply.add_array(field, scratch_, 4);
   }
   if (field == "damage") {
     // Paper figures 11-12: D = 1 - bonds / initial bonds (0 for a disc that never had a bond).

@@ -15,6 +15,7 @@ struct StabilityLimit {
   std::string name;
   double dt_max_s = 0.0;
   std::string detail;
+  bool lag_only = false;  ///< bounds only a lagged coupling (N > 1); N = 1 is always allowed
 };
 
 /// Per-step kinematics; only the fields the model listed in needs() are filled.
@@ -22,6 +23,12 @@ struct Kinematics {
   std::span<const double> position;       ///< [m], 2 per particle, x^{n+N}
   std::span<const double> velocity_half;  ///< [m/s], 2 per particle, v^{n+N-1/2}
   std::span<const double> displacement;   ///< [m], 2 per particle, since the last exchange
+  std::span<const double> wall_segments;  ///< [m], 4 per rigid segment (ax, ay, bx, by), now
+};
+
+/// An axis-aligned box over which the pressure is averaged (a pressure node).
+struct ProbeBox {
+  double x_min_m, y_min_m, x_max_m, y_max_m;
 };
 
 /// Static particle data sent once at Init.
@@ -49,6 +56,13 @@ class FluidModel {
                     std::span<double> force) = 0;
   /// Writes an output field named in provides() (1 value per particle for scalars).
   virtual void output(const std::string& field, std::vector<double>& values) const = 0;
+  /// The mean of p - p_hydro [Pa] over the particles whose centre (in `position`, the last
+  /// step's) lies in `box`, and their count. False for a model without a pore pressure.
+  virtual bool probe(std::span<const double> position, const ProbeBox& box, double& mean_pa,
+                     std::size_t& count) const {
+    (void)position, (void)box, (void)mean_pa, (void)count;
+    return false;
+  }
   /// Named scalars of the last step for the time series (FluidResult.scalars; the coupler
   /// prefixes them with "fluid_"). Once per step, never per particle.
   virtual void scalars(std::vector<std::pair<std::string, double>>& out) const { out.clear(); }

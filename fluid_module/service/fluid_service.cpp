@@ -63,6 +63,7 @@ void FluidService::init(const wire::Message& request, wire::Message& reply) {
     w->set_name(l.name);
     w->set_dt_max_s(l.dt_max_s);
     w->set_detail(l.detail);
+    w->set_lag_only(l.lag_only);
   }
 }
 
@@ -77,10 +78,23 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
   if (contains(needs_, wire::field::kDisplacement)) {
     k.displacement = request.array(wire::field::kDisplacement, 2);
   }
+  if (contains(needs_, wire::field::kWallSegments)) {
+    k.wall_segments = request.array(wire::field::kWallSegments, 4);
+  }
   m.step(s.dt_s(), s.time_s(), k, force_);
   wire::FluidResult* result = reply.envelope.mutable_fluid_result();
   m.scalars(scalars_);
   for (const auto& [name, value] : scalars_) (*result->mutable_scalars())[name] = value;
+  // Pressure nodes: averaged over the particle centres of this step.
+  for (const wire::Probe& p : s.probes()) {
+    double mean = 0.0;
+    std::size_t count = 0;
+    if (!m.probe(k.position, {p.x_min_m(), p.y_min_m(), p.x_max_m(), p.y_max_m()}, mean, count)) {
+      throw std::invalid_argument("fluid model " + m.name() + " has no pressure to probe");
+    }
+    (*result->mutable_scalars())["probe_" + p.name() + "_pa"] = mean;
+    (*result->mutable_scalars())["probe_" + p.name() + "_particles"] = static_cast<double>(count);
+  }
   reply.add_array(wire::field::kForce, force_, 2);
 }
 

@@ -10,9 +10,14 @@
 // sealed side (the whole surface layer along a wall), within its own radius of an open side (the
 // outer layer of the free surface itself: a disc touching the free surface has its centre at most
 // r_max - r_min from the box of the centres, the next layer lies about a diameter further in).
-// Then:
-//  - facing an open side: drained, also where it faces a wall too (the corner particle between a
-//    wall and the free surface drains);
+// Rigid walls and the tool of a coupled scene (their segments come from the DEM every exchange,
+// wire field "wall_segments") seal the particles that face them: a surface particle whose centre
+// lies within h of a segment, with the outward normal within 60 degrees of the direction to the
+// segment's nearest point, keeps the no-flux condition (section 3.3: "equipment moving through
+// the rock"), whatever the box sides say.
+// Otherwise:
+//  - facing an open side: drained, also where it faces a sealed side too (the corner particle
+//    between a wall and the free surface drains);
 //  - facing a sealed side (and no open one): sealed;
 //  - facing no side (a crack, a cut face, a chip, a fragment): drained if any side is open, i.e.
 //    internal surfaces are taken as connected to the free water; with every side sealed nothing
@@ -46,10 +51,12 @@ struct BoundaryCounts {
   std::size_t drained = 0, sealed = 0;
 };
 
-/// Classifies every particle (see above): `normal` 2 per particle, h [m] the kernel support.
+/// Classifies every particle (see above): `normal` 2 per particle, h [m] the kernel support,
+/// `segments` 4 per rigid segment (ax, ay, bx, by) [m], possibly none.
 BoundaryCounts classify_boundary(std::span<const double> div_r, std::span<const double> normal,
                                  double surface_div_r, double h_m,
                                  std::span<const double> position, std::span<const double> radius,
-                                 const Sides& sides, std::span<Boundary> out);
+                                 const Sides& sides, std::span<Boundary> out,
+                                 std::span<const double> segments = {});
 
 }  // namespace rockcut::fluid::sp

@@ -9,10 +9,12 @@ ImplicitModel::ImplicitModel(const SpParams& params)
 
 std::vector<StabilityLimit> ImplicitModel::limits() const {
   const double h = params_.h_m;
-  return {{"implicit_accuracy", params_.max_diffusion_number * h * h / diffusivity_m2_s_,
+  std::vector<StabilityLimit> out = stiffness_limit();
+  out.insert(out.begin(), StabilityLimit{"implicit_accuracy", params_.max_diffusion_number * h * h / diffusivity_m2_s_,
            "accuracy, not stability: max_diffusion_number h^2 / D with max_diffusion_number = " +
                fmt(params_.max_diffusion_number) + ", h = " + fmt(h) + " m, D = " +
-               fmt(diffusivity_m2_s_) + " m^2/s"}};
+               fmt(diffusivity_m2_s_) + " m^2/s"});
+  return out;
 }
 
 void ImplicitModel::advance(double dt_s) {

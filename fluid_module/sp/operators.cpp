@@ -1,5 +1,7 @@
 #include "sp/operators.hpp"
 
+#include <algorithm>
+
 namespace rockcut::fluid::sp {
 
 void gradient(const NeighbourList& list, const Geometry& geo, std::span<const double> a,
@@ -50,6 +52,35 @@ void divergence(const NeighbourList& list, const Geometry& geo, std::span<const 
     }
     const double* m = inv + 3 * i;
     div[i] = gxx * m[0] + (gxy + gyx) * m[1] + gyy * m[2];
+  }
+}
+
+void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
+                            std::span<const double> area, std::span<const double> q,
+                            std::span<double> force) {
+  const int n = static_cast<int>(list.particles());
+  const int* off = list.offsets().data();
+  const int* nb = list.neighbours().data();
+  const double* v = geo.volume.data();
+  const double* inv = geo.l_inverse.data();
+  const double* x = geo.position.data();
+  std::fill(force.begin(), force.end(), 0.0);
+  for (int i = 0; i < n; ++i) {
+    const double aq = area[i] * q[i];
+    if (aq == 0.0) continue;
+    const double xi = x[2 * i], yi = x[2 * i + 1];
+    const double* m = inv + 3 * i;
+    for (int k = off[i]; k < off[i + 1]; ++k) {
+      const int j = nb[k];
+      // A_i q_i B_ij, with grad_i W_ij = -F_ij (x_j - x_i); it pushes j and pulls i back.
+      const double s = -aq * v[j] * geo.f[k];
+      const double gx = s * (x[2 * j] - xi), gy = s * (x[2 * j + 1] - yi);
+      const double bx = m[0] * gx + m[1] * gy, by = m[1] * gx + m[2] * gy;
+      force[2 * j] += bx;
+      force[2 * j + 1] += by;
+      force[2 * i] -= bx;
+      force[2 * i + 1] -= by;
+    }
   }
 }
 

@@ -23,6 +23,17 @@ void gradient(const NeighbourList& list, const Geometry& geo, std::span<const do
 void divergence(const NeighbourList& list, const Geometry& geo, std::span<const double> v,
                 std::span<double> div);
 
+/// The pore-pressure force that is the negative adjoint of `divergence` (energy-consistent):
+///   F_k = sum_i A_i q_i B_ik - A_k q_k sum_j B_kj,   B_ij = V_j L_i^{-1} grad_i W_ij,
+/// with q the excess pressure and A_i the area it acts on (pi r_i^2). It is -dE/du_k of the
+/// stored energy E = sum_i A_i q_i^2 / (2 alpha M) when q_i = -alpha M div_i(u): the coupled
+/// DEM-fluid system then conserves E plus the grains' energy (diffusion, drainage and the
+/// cavitation clamp only take energy out). Inside, it approximates -A_k grad q_k (the symmetric
+/// SPH form); its forces sum to zero. `force` gets 2 values per particle (overwritten).
+void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
+                            std::span<const double> area, std::span<const double> q,
+                            std::span<double> force);
+
 /// The Cleary & Monaghan (Brookshaw) Laplacian of eq. 20 for a uniform coefficient, with the SP
 /// volume V_j in place of m_j / rho_i:
 ///   lap a_i = sum_j 2 V_j (a_i - a_j) F_ij,   F_ij = (n_ij . grad_i W_ij) / r_ij.

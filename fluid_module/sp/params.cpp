@@ -24,10 +24,15 @@ SpParams sp_params_from_scene(const rockcut::Scene& scene) {
     if (side == "bottom") p.sealed[2] = true;
     if (side == "top") p.sealed[3] = true;
   }
+  p.seal_at_walls = scene.dem().walls_size() > 0 || scene.dem().has_tool();
+  p.grain_density_kg_m3 = scene.dem().density_kg_m3();
+  p.dynamic_solid = !scene.dem().has_prescribed_motion();
+  p.local_damping = scene.dem().local_damping();
   p.cavitation = f.cavitation();
   p.p_min_pa = f.cavitation_pressure_pa();
   p.strain_from = f.strain_from() == "velocity_half" ? StrainFrom::velocity_half
                                                      : StrainFrom::displacement;
+  p.force_form = f.force_form() == "gradient" ? ForceForm::gradient : ForceForm::adjoint;
   p.volume_iterations = f.volume_iterations();
   p.skin = f.neighbour_skin();
   p.solver_tolerance = f.implicit().tolerance();

@@ -12,6 +12,8 @@ class Scene;
 namespace rockcut::fluid::sp {
 
 enum class StrainFrom { displacement, velocity_half };
+/// How the force on the grains is discretised (fluid.force_form).
+enum class ForceForm { adjoint, gradient };
 
 struct SpParams {
   double h_m = 0.0015;                 ///< kernel support (smoothing length)
@@ -22,9 +24,16 @@ struct SpParams {
   double p_hydro_pa = 101325.0;        ///< p_atm + rho_w g H
   double surface_div_r = 1.5;          ///< eq. 24 threshold
   std::array<bool, 4> sealed{};        ///< left, right, bottom, top (Sides order)
+  bool seal_at_walls = false;          ///< the DEM has walls or a tool: get their segments
+  /// Grain density of the DEM [kg/m^3] and whether the DEM moves the particles by the fluid force
+  /// (false for prescribed motion): together they set the pore-fluid stiffness limit.
+  double grain_density_kg_m3 = 2800.0;
+  bool dynamic_solid = false;
+  double local_damping = 0.7;          ///< dem.local_damping: removes the lag's energy
   bool cavitation = true;
   double p_min_pa = 2340.0;            ///< eq. 22
   StrainFrom strain_from = StrainFrom::displacement;
+  ForceForm force_form = ForceForm::adjoint;
   unsigned volume_iterations = 3;
   double skin = 0.1;                   ///< neighbour skin, fraction of h
   // Implicit model.

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "sp/format.hpp"
 #include "sp/operators.hpp"
 
 namespace rockcut::fluid::sp {
@@ -25,8 +26,39 @@ PorePressureModel::PorePressureModel(const SpParams& params)
       list_(params.h_m, params.skin) {}
 
 std::vector<std::string> PorePressureModel::needs() const {
-  return {"position", params_.strain_from == StrainFrom::displacement ? "displacement"
-                                                                      : "velocity_half"};
+  std::vector<std::string> out = {
+      "position", params_.strain_from == StrainFrom::displacement ? "displacement" : "velocity_half"};
+  if (params_.seal_at_walls) out.emplace_back("wall_segments");
+  return out;
+}
+
+std::vector<StabilityLimit> PorePressureModel::stiffness_limit() const {
+  if (!params_.dynamic_solid || radius_.empty()) return {};
+  const double stiffness = params_.alpha * params_.bulk_modulus_pa;  // k_f [N/m per m]
+  if (!(stiffness > 0.0)) return {};
+  const double r_min = *std::min_element(radius_.begin(), radius_.end());
+  const double m_min = params_.grain_density_kg_m3 * std::numbers::pi * r_min * r_min;
+  const double dt = kFluidStiffnessC * params_.local_damping * std::sqrt(m_min / stiffness);
+  return {{"pore_fluid_stiffness", dt,
+           "lagged fluid force: C alpha_d sqrt(m_min / (alpha M)) with C = " +
+               fmt(kFluidStiffnessC) + ", local damping alpha_d = " + fmt(params_.local_damping) +
+               ", m_min = " + fmt(m_min) + " kg/m, alpha M = " + fmt(stiffness) +
+               " Pa; binds only N > 1",
+           /*lag_only=*/true}};
+}
+
+bool PorePressureModel::probe(std::span<const double> position, const ProbeBox& box,
+                              double& mean_pa, std::size_t& count) const {
+  double sum = 0.0;
+  count = 0;
+  for (std::size_t i = 0; i < pressure_.size() && 2 * i + 1 < position.size(); ++i) {
+    const double x = position[2 * i], y = position[2 * i + 1];
+    if (x < box.x_min_m || x > box.x_max_m || y < box.y_min_m || y > box.y_max_m) continue;
+    sum += pressure_[i] - params_.p_hydro_pa;
+    ++count;
+  }
+  mean_pa = count ? sum / static_cast<double>(count) : 0.0;
+  return true;
 }
 
 std::vector<std::string> PorePressureModel::provides() const {
@@ -77,6 +109,10 @@ void PorePressureModel::initialise(const StaticData& data) {
   }
   strain_rate_.assign(n, 0.0);
   source_.assign(n, 0.0);
+  excess_.assign(n, 0.0);
+  share_.assign(n, 0.0);
+  area_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) area_[i] = std::numbers::pi * radius_[i] * radius_[i];
   work_.assign(2 * n, 0.0);
   grad_.assign(2 * n, 0.0);
   boundary_.assign(n, Boundary::interior);
@@ -95,7 +131,7 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   list_.update(k.position);
   update_geometry(list_, kernel_, k.position, lucy_volume_, params_.volume_iterations, geo_);
   counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
-                              k.position, radius_, sides_, boundary_);
+                              k.position, radius_, sides_, boundary_, k.wall_segments);
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.
@@ -122,12 +158,22 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     for (double p : pressure_) cavitated_ += p <= params_.p_min_pa;
   }
 
+  if (params_.force_form == ForceForm::adjoint) {
+    // The area the excess pressure acts on: the grains' share phi V_i of the SP volume (phi the
+    // solid fraction measured at initialise), smooth where pi r_i^2 jumps from grain to grain.
+    // Summed over the grains it is sum pi r^2, as in eq. 21.
+    for (std::size_t i = 0; i < n; ++i) {
+      excess_[i] = pressure_[i] - params_.p_hydro_pa;
+      share_[i] = packing_fraction_ * geo_.volume[i];
+    }
+    adjoint_pressure_force(list_, geo_, share_, excess_, force);
+    return;
+  }
   // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].
   gradient(list_, geo_, pressure_, grad_);
   for (std::size_t i = 0; i < n; ++i) {
-    const double area = std::numbers::pi * radius_[i] * radius_[i];
-    force[2 * i] = -grad_[2 * i] * area;
-    force[2 * i + 1] = -grad_[2 * i + 1] * area;
+    force[2 * i] = -grad_[2 * i] * area_[i];
+    force[2 * i + 1] = -grad_[2 * i + 1] * area_[i];
   }
 }
 

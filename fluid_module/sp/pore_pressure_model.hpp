@@ -21,6 +21,21 @@
 
 namespace rockcut::fluid::sp {
 
+/// Lagged fluid force (N > 1): the fluid force is computed from the positions at an exchange and
+/// held for the N DEM steps of the fluid step. Undrained, the pore fluid stiffens each grain's
+/// contacts by about k_f = alpha M (eq. 14: dp = -alpha M eps_v over a grain's neighbourhood, and
+/// eq. 21 turns it into a force on an area pi r^2). A spring force lagged by tau ~ dt_f / 2 is a
+/// negative damping: it feeds a grain's vibration energy at the rate k_f dt_f / (2 m). Measured
+/// (docs/fluid_model.md): an undamped bonded block with a 1 Pa pressure pulse grows by 1e3 per
+/// 0.5 ms at N = 5 (rate 1.4e4 /s against k_f dt_f / (2 m) = 1.3e4 /s) and is stable at N = 1,
+/// where nothing lags. Local damping (dem.local_damping) takes the energy out again: the reduced
+/// saturated cut (damping 0.7) runs like the dry one at dt_f = 20 us and blows up at 67 us, i.e.
+/// critical between 8.5 and 28 times sqrt(m_min / (alpha M)). The limit is
+///   dt_f <= kFluidStiffnessC * local_damping * sqrt(m_min / (alpha M)),
+/// 2.1 sqrt(m_min / (alpha M)) at damping 0.7, a factor 4 below the smallest critical value; it
+/// binds only N > 1 (N = 1 is always allowed, also without damping).
+inline constexpr double kFluidStiffnessC = 3.0;
+
 class PorePressureModel : public FluidModel {
  public:
   explicit PorePressureModel(const SpParams& params);
@@ -33,6 +48,8 @@ class PorePressureModel : public FluidModel {
             std::span<double> force) override;
   void output(const std::string& field, std::vector<double>& values) const override;
   void scalars(std::vector<std::pair<std::string, double>>& out) const override;
+  bool probe(std::span<const double> position, const ProbeBox& box, double& mean_pa,
+             std::size_t& count) const override;
 
   // For tests and benchmarks.
   const SpParams& params() const { return params_; }
@@ -47,6 +64,9 @@ class PorePressureModel : public FluidModel {
   std::size_t cavitated() const { return cavitated_; }
 
  protected:
+  /// The limit the pore fluid's stiffness sets on the fluid step when the DEM moves the particles
+  /// by the fluid force (DESIGN section 5; see kFluidStiffnessC). Empty for prescribed motion.
+  std::vector<StabilityLimit> stiffness_limit() const;
   /// Advances pressure_ by dt with the source -alpha M strain_rate_ (Pa/s), holding drained
   /// particles at p_hydro and clamping by eq. 22. Called once per step with dt > 0.
   virtual void advance(double dt_s) = 0;
@@ -60,6 +80,7 @@ class PorePressureModel : public FluidModel {
   Geometry geo_;
   std::vector<double> radius_, lucy_volume_;
   std::vector<double> pressure_, strain_rate_, source_, work_, grad_;
+  std::vector<double> excess_, area_, share_;  // p - p_hydro [Pa]; pi r^2, phi V [m^2]
   std::vector<Boundary> boundary_;
   Sides sides_;
   BoundaryCounts counts_;

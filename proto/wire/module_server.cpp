@@ -1,5 +1,6 @@
 #include "wire/module_server.hpp"
 
+#include <chrono>
 #include <exception>
 
 #include "wire/protocol.hpp"
@@ -27,8 +28,11 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
 
   Message request;
   Message reply;
+  using clock = std::chrono::steady_clock;
+  double busy_s = 0.0;  // handling time, reported in every reply's Envelope.busy_s
   for (;;) {
     request.receive(socket);
+    const auto start = clock::now();
     reply.clear();
     const Envelope::BodyCase body = request.envelope.body_case();
     if (body == Envelope::kShutdown) {
@@ -48,8 +52,12 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
         error->set_message(e.what());
       }
     }
+    busy_s += std::chrono::duration<double>(clock::now() - start).count();
+    reply.envelope.set_busy_s(busy_s);
     reply.send(socket);
+    const auto after = clock::now();
     handler.after_reply();
+    busy_s += std::chrono::duration<double>(clock::now() - after).count();
   }
 }
 

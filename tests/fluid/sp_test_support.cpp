@@ -75,7 +75,7 @@ Driver::Driver(sp::PorePressureModel& model, const Particles& p)
     : model_(model), x_(p.position), d_(p.position.size(), 0.0), v_(p.position.size(), 0.0),
       force_(p.position.size(), 0.0) {
   model_.initialise({p.radius, p.position});
-  model_.step(0.0, 0.0, {x_, v_, d_}, force_);  // the t = 0 exchange: forces only
+  model_.step(0.0, 0.0, {x_, v_, d_, {}}, force_);  // the t = 0 exchange: forces only
 }
 
 void Driver::step(double dt_s, double exx, double eyy) {
@@ -89,7 +89,7 @@ void Driver::step(double dt_s, double exx, double eyy) {
     x_[2 * i + 1] += d_[2 * i + 1];
   }
   t_ += dt_s;
-  model_.step(dt_s, t_, {x_, v_, d_}, force_);
+  model_.step(dt_s, t_, {x_, v_, d_, {}}, force_);
 }
 
 }  // namespace rockcut::fluid::test

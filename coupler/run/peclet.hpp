@@ -1,0 +1,22 @@
+// The pore Peclet number of a cut (paper eq. 2, Detournay and Atkinson 2000) and its regime.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "rockcut/scene.pb.h"
+
+namespace rockcut::coupler {
+
+struct PecletNumber {
+  double value = 0.0;           ///< v_c t_c / (4 D)
+  double diffusivity_m2_s = 0.0;  ///< D = M kappa / mu
+  std::string regime;           ///< "drained", "transient" or "undrained"
+};
+
+/// Pe = v_c t_c / (4 D) with D = M kappa / mu (eq. 2 with n C_f = 1 / M) from the scene's tool
+/// (cutting velocity and depth) and fluid block. Regimes as Detournay and Atkinson: drained below
+/// 0.001, undrained above 10, transient between. None without a tool or a fluid.
+std::optional<PecletNumber> peclet_number(const rockcut::Scene& scene);
+
+}  // namespace rockcut::coupler

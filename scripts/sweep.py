@@ -448,14 +448,14 @@ def fig_forces(s):
 def fig_pressure_p1(s):
     line_figure(s, "fig09_pressure_p1.png", "Mean pore pressure at P1 (fig. 9)",
                 [("pressure_p1_mean_pa", "P1", "tab:blue")],
-                "mean pore pressure [MPa]", 1e-6, against_pressure=True, reference=True)
+                "mean excess pore pressure p - p_hydro [MPa]", 1e-6, against_pressure=True)
 
 
 def fig_pressure_p2_p3(s):
     line_figure(s, "fig10_pressure_p2_p3.png", "Mean pore pressures at P2 and P3 (fig. 10)",
                 [("pressure_p2_mean_pa", "P2", "tab:green"),
                  ("pressure_p3_mean_pa", "P3", "tab:red")],
-                "mean pore pressure [MPa]", 1e-6, against_pressure=True, reference=True)
+                "mean excess pore pressure p - p_hydro [MPa]", 1e-6, against_pressure=True)
 
 
 def fig_breaks_fraction(s):

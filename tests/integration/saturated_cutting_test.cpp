@@ -1,0 +1,154 @@
+// End-to-end saturated cutting: a small, coarse version of cases/cutting/saturated_reduced.pbtxt
+// through the real coupler, dem_module and fluid_module. Checks what a coupled cutting run writes
+// (pressure nodes, Peclet regime, the coupling interval and its binding limit, the modules' busy
+// times, no flux at the tool and walls), and that the fluid model is swapped by one scene line or
+// replaced by an executable given by path, the DEM untouched.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "integration/h5_read.hpp"
+#include "integration/process_helpers.hpp"
+#include "integration/summary_values.hpp"
+#include "output/summary_json.hpp"
+
+namespace rockcut::test {
+namespace {
+
+namespace fs = std::filesystem;
+using coupler::Summary;
+
+// saturated_reduced.pbtxt with the node boxes 10 mm wide (written once per test directory).
+fs::path small_scene(const fs::path& dir) {
+  std::string text = read_file(source("cases/cutting/saturated_reduced.pbtxt"));
+  for (std::size_t at; (at = text.find("size_m: 0.005")) != std::string::npos;) {
+    text.replace(at, 13, "size_m: 0.01");
+  }
+  const fs::path scene = dir / "saturated_small.pbtxt";
+  std::ofstream(scene) << text;
+  return scene;
+}
+
+// Twice as coarse as saturated_reduced (radius 1.6-3.2 mm, about 150 discs, h 12 mm: the same
+// h / diameter), 7 mm of travel with the steady part from 4 mm, and node boxes of 10 mm so each
+// holds a few disc centres. Under two seconds with one thread.
+const std::vector<std::string> kSmallCut = {
+    "--set", "dem.specimen.radius_min_m=0.0016", "--set", "dem.specimen.radius_max_m=0.0032",
+    "--set", "fluid.smoothing_length_m=0.012",   "--set", "time.end_time_s=0.008",
+    "--set", "dem.tool.steady_after_m=0.004",    "--set", "output.frame_interval_s=0.004"};
+
+struct CutRun {
+  fs::path out;
+  int code = -1;
+  std::string err;
+};
+
+CutRun run_small_cut(const std::string& name, const std::vector<std::string>& extra = {}) {
+  const fs::path dir = fresh_dir(name);
+  std::vector<std::string> argv = {bin("coupler"), "run", small_scene(dir).string(), "--out",
+                                   (dir / "out").string()};
+  argv.insert(argv.end(), kSmallCut.begin(), kSmallCut.end());
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  CutRun r;
+  r.out = dir / "out";
+  std::string out;
+  r.code = run(argv, dir, "coupler", &out, &r.err, std::chrono::milliseconds(90000));
+  return r;
+}
+
+std::string last_frame(const H5Reader& h5) {
+  auto frames = h5.members("/frames");
+  if (frames.empty()) throw std::runtime_error("run.h5 has no frames");
+  return "/frames/" + *std::max_element(frames.begin(), frames.end());
+}
+
+void expect_coupled_cutting_summary(const Summary& s, const std::string& model) {
+  EXPECT_EQ(text(s, "status"), "completed");
+  EXPECT_EQ(text(s, "fluid_model"), model);
+  for (const char* key :
+       {"force_horizontal_mean_n_per_m", "force_vertical_mean_n_per_m", "breaks_tensile",
+        "breaks_shear", "chips", "pressure_p1_mean_pa", "pressure_p2_mean_pa",
+        "pressure_p3_mean_pa", "peclet_number", "regime", "dt_s", "coupling_interval",
+        "wall_time_s", "particle_steps_per_s", "hydrostatic_pressure_pa", "dem_busy_s",
+        "fluid_busy_s"}) {
+    EXPECT_TRUE(s.get(key).has_value()) << "summary.json lacks " << key;
+  }
+  // Eq. 2: v_c t_c / (4 D) = 1 m/s * 0.02 m / (4 * 2e9 * 1e-14 / 1e-3 m^2/s) = 0.25, transient.
+  EXPECT_NEAR(number(s, "peclet_number"), 0.25, 1e-12);
+  EXPECT_EQ(text(s, "regime"), "transient");
+  EXPECT_GT(number(s, "force_horizontal_mean_n_per_m"), 0.0);
+  // The tip node sits in the crushed zone: it holds disc centres in the steady part.
+  EXPECT_GT(number(s, "pressure_p1_samples"), 0);
+  EXPECT_TRUE(std::isfinite(number(s, "pressure_p1_mean_pa")));
+  EXPECT_GT(number(s, "fluid_busy_s"), 0.0);
+  EXPECT_GT(number(s, "dem_busy_s"), 0.0);
+  EXPECT_LE(number(s, "dem_busy_s"), number(s, "wall_time_s") * 1.05);
+}
+
+TEST(SaturatedCutting, ExplicitModelWritesPressureNodesRegimeAndSealsAtTheTool) {
+  const CutRun r = run_small_cut("explicit");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Summary s = Summary::read(r.out / "summary.json");
+  expect_coupled_cutting_summary(s, "explicit");
+  // N is chosen from the limits and its binding limit printed: here the pore fluid's stiffness
+  // (lagged force) binds, well below the explicit diffusion limit.
+  EXPECT_GT(number(s, "coupling_interval"), 1);
+  EXPECT_NE(r.err.find("binding: pore_fluid_stiffness"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("transient regime"), std::string::npos) << r.err;
+
+  const H5Reader h5(r.out / "run.h5");
+  for (const char* name : {"fluid_probe_p1_pa", "fluid_probe_p2_pa", "fluid_probe_p3_pa",
+                           "fluid_probe_p1_particles", "tool_tip_x_m"}) {
+    EXPECT_FALSE(h5.doubles(std::string("/timeseries/") + name).empty()) << name;
+  }
+  // No side of the box is sealed in this scene: the sealed particles (boundary 2) are those
+  // facing the floor, the walls and the tool, whose segments the DEM sends every exchange.
+  const auto boundary = h5.doubles(last_frame(h5) + "/boundary");
+  const auto sealed = std::count(boundary.begin(), boundary.end(), 2.0);
+  const auto drained = std::count(boundary.begin(), boundary.end(), 1.0);
+  EXPECT_GT(sealed, 0);
+  EXPECT_GT(drained, 0);
+}
+
+TEST(SaturatedCutting, ImplicitModelByOneSceneLine) {
+  const CutRun r = run_small_cut("implicit", {"--set", "fluid.model=implicit"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_coupled_cutting_summary(Summary::read(r.out / "summary.json"), "implicit");
+}
+
+TEST(SaturatedCutting, FluidExecutableGivenByPath) {
+  // A fluid module elsewhere on disk (here a copy under another name) runs in place of the built
+  // in one; a path that does not exist is named in the error.
+  const fs::path dir = fresh_dir("fluid_exe");
+  const fs::path exe = dir / "my_fluid_model";
+  fs::copy_file(bin("fluid_module"), exe);
+  const CutRun r = run_small_cut("by_path", {"--set", "fluid.executable=" + exe.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_coupled_cutting_summary(Summary::read(r.out / "summary.json"), "explicit");
+  EXPECT_NE(r.err.find("my_fluid_model"), std::string::npos) << r.err;
+
+  const CutRun bad = run_small_cut("bad_path", {"--set", "fluid.executable=/nonexistent/fluid"});
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.err.find("/nonexistent/fluid"), std::string::npos) << bad.err;
+}
+
+TEST(SaturatedCutting, CouplingIntervalAboveTheFluidStiffnessLimitIsRefused) {
+  const CutRun r = run_small_cut("too_large_n", {"--set", "coupling.interval=100000"});
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("pore_fluid_stiffness"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("use coupling.interval <="), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(r.out / "summary.json"));
+}
+
+TEST(SaturatedCutting, WithoutDampingTheFluidForceDoesNotLag) {
+  // The lagged force is a negative damping that only local damping removes: undamped, N = 1.
+  const CutRun r = run_small_cut("undamped", {"--set", "dem.local_damping=0",
+                                              "--set", "time.end_time_s=0.002"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(number(Summary::read(r.out / "summary.json"), "coupling_interval"), 1);
+}
+
+}  // namespace
+}  // namespace rockcut::test

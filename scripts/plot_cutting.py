@@ -196,8 +196,9 @@ def discs(ax, pos, radius, **kw):
 
 
 def frame_extent(ax, pos, radius, poly=None):
-    lo = (pos - radius[:, None]).min(axis=0)
-    hi = (pos + radius[:, None]).max(axis=0)
+    # The bulk of the discs: the few fragments thrown far away would shrink the block to a strip.
+    lo = np.percentile(pos - radius[:, None], 1.0, axis=0)
+    hi = np.percentile(pos + radius[:, None], 99.0, axis=0)
     if poly is not None:
         lo = np.minimum(lo, poly.min(axis=0))
         hi = np.maximum(hi, poly.max(axis=0))

@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""Regression cases: reduced scenes whose summary.json values are kept as references.
+
+  scripts/regression check NAME [--coupler PATH]   run the case and compare with its reference
+                                                  (what ctest runs: regression.NAME)
+  scripts/regression update [NAME ...]            run the cases and store their values as the new
+                                                  references (keeps the tolerances)
+  scripts/regression spread [NAME ...] [--seeds 1,2,3] [--threads 1,2] [--jobs 2]
+                                                  measure each key's spread over specimen seeds and
+                                                  thread counts and store it as the tolerance
+
+A case is tests/regression/NAME.json:
+  scene            the scene file, relative to the repository
+  set              --set overrides that make it short (e.g. a shorter cut)
+  keys             the summary.json keys compared
+  values           the reference values (seed and threads of the scene as given)
+  tolerance_abs    per key: |value - reference| allowed
+  spread           how the tolerances were measured (runs, min, max per key)
+
+Why these tolerances: a given seed and thread count reproduce a run bit for bit, so any change of
+a value comes from a change of the code or the scene. The tolerance is the range (max - min) of
+the value over specimens of other seeds and over 1 and 2 threads (whose round-off differs and
+grows chaotically through the bond breaks): a change that moves a value by more than the natural
+scatter between equivalent specimens fails. The floor of 1 % of the reference (and 1 for counts)
+keeps a key that happened not to vary in the measured runs from failing on round-off.
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+CASES = os.path.join(ROOT, "tests", "regression")
+
+
+def case_path(name):
+    return os.path.join(CASES, name + ".json")
+
+
+def load_case(name):
+    with open(case_path(name)) as f:
+        return json.load(f)
+
+
+def save_case(name, case):
+    with open(case_path(name), "w") as f:
+        json.dump(case, f, indent=2, sort_keys=False)
+        f.write("\n")
+
+
+def all_names():
+    return sorted(f[:-5] for f in os.listdir(CASES) if f.endswith(".json"))
+
+
+def run_case(case, coupler, extra_sets=()):
+    """Runs the case's scene with its overrides; returns the summary as a dict."""
+    with tempfile.TemporaryDirectory(prefix="rockcut-regression-") as out:
+        argv = [coupler, "run", os.path.join(ROOT, case["scene"]), "--out", out]
+        for s in list(case.get("set", [])) + list(extra_sets):
+            argv += ["--set", s]
+        proc = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        if proc.returncode != 0:
+            raise RuntimeError("%s exited with %d:\n%s" % (" ".join(argv), proc.returncode,
+                                                          proc.stderr[-2000:]))
+        with open(os.path.join(out, "summary.json")) as f:
+            return json.load(f)
+
+
+def check(name, coupler):
+    case = load_case(name)
+    summary = run_case(case, coupler)
+    failures = []
+    print("regression %s: %s %s" % (name, case["scene"], " ".join("--set " + s for s in case["set"])))
+    for key in case["keys"]:
+        ref = case["values"][key]
+        tol = case["tolerance_abs"][key]
+        value = summary.get(key)
+        ok = value is not None and abs(value - ref) <= tol
+        print("  %-32s %14.6g  reference %14.6g  +- %-12.4g %s" %
+              (key, value if value is not None else float("nan"), ref, tol, "ok" if ok else "MOVED"))
+        if not ok:
+            failures.append(key)
+    if failures:
+        print("regression %s: %d value(s) moved beyond the seed/thread spread: %s\n"
+              "  If the change is intended, regenerate the references: scripts/regression update %s"
+              % (name, len(failures), ", ".join(failures), name))
+        return 1
+    print("regression %s: all %d values within their tolerances" % (name, len(case["keys"])))
+    return 0
+
+
+def update(names, coupler):
+    for name in names:
+        case = load_case(name)
+        summary = run_case(case, coupler)
+        case["values"] = {k: summary[k] for k in case["keys"]}
+        save_case(name, case)
+        print("regression %s: references updated" % name)
+    return 0
+
+
+def spread(names, coupler, seeds, threads, jobs):
+    for name in names:
+        case = load_case(name)
+        variants = [("dem.specimen.seed=%d" % s, "dem.threads=%d" % t) for s in seeds for t in threads]
+        with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+            summaries = list(pool.map(lambda v: run_case(case, coupler, v), variants))
+        reference = run_case(case, coupler)
+        stats, tolerance = {}, {}
+        for key in case["keys"]:
+            values = [s[key] for s in summaries]
+            lo, hi = min(values), max(values)
+            ref = reference[key]
+            floor = max(0.01 * abs(ref), 1.0 if isinstance(ref, int) else 0.0)
+            tolerance[key] = max(hi - lo, floor)
+            stats[key] = {"min": lo, "max": hi}
+        case["values"] = {k: reference[k] for k in case["keys"]}
+        case["tolerance_abs"] = tolerance
+        case["spread"] = {"runs": ["%s, %s" % v for v in variants], "per_key": stats,
+                          "command": "scripts/regression spread %s --seeds %s --threads %s" %
+                          (name, ",".join(map(str, seeds)), ",".join(map(str, threads)))}
+        save_case(name, case)
+        print("regression %s: tolerances from %d runs" % (name, len(variants)))
+        for key in case["keys"]:
+            print("  %-32s reference %12.5g  range [%12.5g, %12.5g]" %
+                  (key, case["values"][key], stats[key]["min"], stats[key]["max"]))
+    return 0
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("command", choices=["check", "update", "spread"])
+    parser.add_argument("names", nargs="*")
+    parser.add_argument("--coupler", default=os.path.join(ROOT, "build", "bin", "coupler"))
+    parser.add_argument("--seeds", default="1,2,3")
+    parser.add_argument("--threads", default="1,2")
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args()
+    names = args.names or all_names()
+    for n in names:
+        if not os.path.exists(case_path(n)):
+            parser.error("no regression case %s (have: %s)" % (n, ", ".join(all_names())))
+    try:
+        if args.command == "check":
+            return max(check(n, args.coupler) for n in names)
+        if args.command == "update":
+            return update(names, args.coupler)
+        return spread(names, args.coupler, [int(s) for s in args.seeds.split(",")],
+                      [int(t) for t in args.threads.split(",")], args.jobs)
+    except RuntimeError as e:
+        print("regression: " + str(e), file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -16,7 +16,9 @@ const double* find(const std::vector<std::pair<std::string, double>>& scalars,
 
 CuttingSummary::CuttingSummary(const rockcut::Scene& scene, std::vector<std::string> node_names) {
   if (!scene.dem().has_tool()) return;
-  for (std::string& name : node_names) nodes_.push_back({std::move(name)});
+  for (std::string& name : node_names) {
+    nodes_.push_back({name, "fluid_probe_" + name + "_pa", "fluid_probe_" + name + "_particles"});
+  }
   const rockcut::Tool& tool = scene.dem().tool();
   active_ = true;
   steady_after_m_ = tool.steady_after_m() > 0 ? tool.steady_after_m() : 2.0 * tool.cutting_depth_m();
@@ -34,8 +36,8 @@ void CuttingSummary::observe(const std::vector<std::pair<std::string, double>>& 
   sum_y_ += *fy;
   ++samples_;
   for (NodeMean& node : nodes_) {
-    const double* p = find(scalars, "fluid_probe_" + node.name + "_pa");
-    const double* n = find(scalars, "fluid_probe_" + node.name + "_particles");
+    const double* p = find(scalars, node.pa_key);
+    const double* n = find(scalars, node.particles_key);
     if (!p || !n || *n < 1) continue;
     node.sum_pa += *p;
     ++node.samples;

@@ -39,6 +39,7 @@ class CuttingSummary {
   std::uint64_t samples_ = 0;
   struct NodeMean {
     std::string name;
+    std::string pa_key, particles_key;  // its time-series columns
     double sum_pa = 0.0;
     std::uint64_t samples = 0;
   };

@@ -13,4 +13,10 @@ std::optional<PecletNumber> peclet_number(const rockcut::Scene& scene) {
   return pe;
 }
 
+double hydrostatic_pressure_pa(const rockcut::Scene& scene) {
+  const rockcut::Fluid& f = scene.fluid();
+  return f.atmospheric_pressure_pa() +
+         f.water_density_kg_m3() * f.gravity_m_s2() * scene.water_depth_m();
+}
+
 }  // namespace rockcut::coupler

@@ -1,4 +1,5 @@
-// The pore Peclet number of a cut (paper eq. 2, Detournay and Atkinson 2000) and its regime.
+// The pore-fluid setting of a scene as the coupler reports it: the hydrostatic pressure and the
+// pore Peclet number of a cut (paper eq. 2, Detournay and Atkinson 2000) with its regime.
 #pragma once
 
 #include <optional>
@@ -18,5 +19,8 @@ struct PecletNumber {
 /// (cutting velocity and depth) and fluid block. Regimes as Detournay and Atkinson: drained below
 /// 0.001, undrained above 10, transient between. None without a tool or a fluid.
 std::optional<PecletNumber> peclet_number(const rockcut::Scene& scene);
+
+/// p_hydro = p_atm + rho_w g water_depth_m [Pa] (section 3.3) from the scene's fluid block.
+double hydrostatic_pressure_pa(const rockcut::Scene& scene);
 
 }  // namespace rockcut::coupler

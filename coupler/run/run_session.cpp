@@ -48,11 +48,7 @@ RunSession::RunSession(const RunOptions& options, scene::LoadedScene scene)
     : options_(options), loaded_(std::move(scene)), scene_(loaded_.scene) {
   coupled_ = scene_.has_fluid();
   if (options_.out_dir.empty()) options_.out_dir = fs::path("out") / loaded_.path.stem();
-  nodes_ = pressure_nodes(scene_);
   peclet_ = peclet_number(scene_);
-  std::vector<std::string> node_names;
-  for (const PressureNodeBox& n : nodes_) node_names.push_back(n.name);
-  cutting_ = std::make_unique<CuttingSummary>(scene_, node_names);
   calibration_ = std::make_unique<CalibrationSummary>(scene_);
   // A packing file named in the scene is relative to the scene file; the DEM gets it absolute.
   if (loaded_.scene.dem().has_packing_file()) {
@@ -178,13 +174,18 @@ void RunSession::init_modules() {
   dem_.link->request(request_, reply_);
 }
 
-void RunSession::check_frame_fields() {
+void RunSession::choose_pressure_nodes() {
   // Pressure nodes need a fluid model with a pressure; others (prescribed_gradient, a third
   // party's) run without them.
-  if (fluid_ && !contains(fluid_->init.provides(), std::string(wire::field::kPressure))) {
-    nodes_.clear();
-    cutting_ = std::make_unique<CuttingSummary>(scene_, std::vector<std::string>{});
+  if (fluid_ && contains(fluid_->init.provides(), std::string(wire::field::kPressure))) {
+    nodes_ = pressure_nodes(scene_);
   }
+  std::vector<std::string> node_names;
+  for (const PressureNodeBox& n : nodes_) node_names.push_back(n.name);
+  cutting_ = std::make_unique<CuttingSummary>(scene_, std::move(node_names));
+}
+
+void RunSession::check_frame_fields() {
   dem_logs_breaks_ = contains(dem_.init.provides(), "breaks") && scene_.dem().has_bonds();
   std::vector<std::string> wanted(scene_.output().frame_fields().begin(),
                                   scene_.output().frame_fields().end());
@@ -248,10 +249,8 @@ void RunSession::open_output() {
   summary_.set("coupling_interval", static_cast<std::int64_t>(plan_.coupling_interval));
   summary_.set("fluid_model", fluid_ ? fluid_->init.model() : std::string("none"));
   if (fluid_) {
-    const rockcut::Fluid& f = scene_.fluid();
     summary_.set("water_depth_m", scene_.water_depth_m());
-    summary_.set("hydrostatic_pressure_pa", f.atmospheric_pressure_pa() + f.water_density_kg_m3() *
-                                                f.gravity_m_s2() * scene_.water_depth_m());
+    summary_.set("hydrostatic_pressure_pa", hydrostatic_pressure_pa(scene_));
   }
   if (peclet_) {
     summary_.set("peclet_number", peclet_->value);
@@ -283,8 +282,7 @@ void RunSession::print_startup() const {
   }
   if (fluid_) {
     std::fprintf(stderr, "water      depth %.6g m, p_hydro %.6g Pa%s\n", scene_.water_depth_m(),
-                 scene_.fluid().atmospheric_pressure_pa() + scene_.fluid().water_density_kg_m3() *
-                     scene_.fluid().gravity_m_s2() * scene_.water_depth_m(),
+                 hydrostatic_pressure_pa(scene_),
                  nodes_.empty() ? "" : (", " + std::to_string(nodes_.size()) +
                                         " pressure nodes moving with the tool").c_str());
   }
@@ -295,6 +293,7 @@ int RunSession::run() {
   try {
     start_modules();
     init_modules();
+    choose_pressure_nodes();
     check_frame_fields();
     std::vector<Limit> dem_limits, fluid_limits;
     for (const auto& l : dem_.init.limits()) {

@@ -63,6 +63,7 @@ class RunSession {
   // run_session.cpp: set-up and tear-down
   void start_modules();
   void init_modules();
+  void choose_pressure_nodes();
   void check_frame_fields();
   void open_output();
   void print_startup() const;

@@ -58,9 +58,8 @@ class FluidModel {
   virtual void output(const std::string& field, std::vector<double>& values) const = 0;
   /// The mean of p - p_hydro [Pa] over the particles whose centre (in `position`, the last
   /// step's) lies in `box`, and their count. False for a model without a pore pressure.
-  virtual bool probe(std::span<const double> position, const ProbeBox& box, double& mean_pa,
-                     std::size_t& count) const {
-    (void)position, (void)box, (void)mean_pa, (void)count;
+  virtual bool probe(std::span<const double> /*position*/, const ProbeBox& /*box*/,
+                     double& /*mean_pa*/, std::size_t& /*count*/) const {
     return false;
   }
   /// Named scalars of the last step for the time series (FluidResult.scalars; the coupler

@@ -12,12 +12,10 @@ ExplicitModel::ExplicitModel(const SpParams& params)
     : PorePressureModel(params),
       dt_max_s_(kExplicitStabilityC * params.h_m * params.h_m / diffusivity_m2_s_) {}
 
-std::vector<StabilityLimit> ExplicitModel::limits() const {
-  std::vector<StabilityLimit> out = stiffness_limit();
-  out.insert(out.begin(), StabilityLimit{"explicit_diffusion", dt_max_s_,
-           "C h^2 / D with C = " + fmt(kExplicitStabilityC) + ", h = " + fmt(params_.h_m) +
-               " m, D = M kappa / mu = " + fmt(diffusivity_m2_s_) + " m^2/s"});
-  return out;
+StabilityLimit ExplicitModel::diffusion_limit() const {
+  return {"explicit_diffusion", dt_max_s_,
+          "C h^2 / D with C = " + fmt(kExplicitStabilityC) + ", h = " + fmt(params_.h_m) +
+              " m, D = M kappa / mu = " + fmt(diffusivity_m2_s_) + " m^2/s"};
 }
 
 void ExplicitModel::advance(double dt_s) {

@@ -21,10 +21,10 @@ class ExplicitModel final : public PorePressureModel {
  public:
   explicit ExplicitModel(const SpParams& params);
   std::string name() const override { return "explicit"; }
-  std::vector<StabilityLimit> limits() const override;
   double dt_max_s() const { return dt_max_s_; }
 
  private:
+  StabilityLimit diffusion_limit() const override;
   void advance(double dt_s) override;
   double dt_max_s_;
 };

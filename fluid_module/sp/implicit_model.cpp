@@ -7,14 +7,12 @@ namespace rockcut::fluid::sp {
 ImplicitModel::ImplicitModel(const SpParams& params)
     : PorePressureModel(params), system_(params.solver_tolerance, params.solver_max_iterations) {}
 
-std::vector<StabilityLimit> ImplicitModel::limits() const {
+StabilityLimit ImplicitModel::diffusion_limit() const {
   const double h = params_.h_m;
-  std::vector<StabilityLimit> out = stiffness_limit();
-  out.insert(out.begin(), StabilityLimit{"implicit_accuracy", params_.max_diffusion_number * h * h / diffusivity_m2_s_,
-           "accuracy, not stability: max_diffusion_number h^2 / D with max_diffusion_number = " +
-               fmt(params_.max_diffusion_number) + ", h = " + fmt(h) + " m, D = " +
-               fmt(diffusivity_m2_s_) + " m^2/s"});
-  return out;
+  return {"implicit_accuracy", params_.max_diffusion_number * h * h / diffusivity_m2_s_,
+          "accuracy, not stability: max_diffusion_number h^2 / D with max_diffusion_number = " +
+              fmt(params_.max_diffusion_number) + ", h = " + fmt(h) + " m, D = " +
+              fmt(diffusivity_m2_s_) + " m^2/s"};
 }
 
 void ImplicitModel::advance(double dt_s) {

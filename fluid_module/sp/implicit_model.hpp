@@ -15,10 +15,10 @@ class ImplicitModel final : public PorePressureModel {
  public:
   explicit ImplicitModel(const SpParams& params);
   std::string name() const override { return "implicit"; }
-  std::vector<StabilityLimit> limits() const override;
   const ImplicitReport& last_solve() const { return last_; }
 
  private:
+  StabilityLimit diffusion_limit() const override;
   void advance(double dt_s) override;
   void add_scalars(std::vector<std::pair<std::string, double>>& out) const override;
 

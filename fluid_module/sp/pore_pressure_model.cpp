@@ -32,19 +32,22 @@ std::vector<std::string> PorePressureModel::needs() const {
   return out;
 }
 
-std::vector<StabilityLimit> PorePressureModel::stiffness_limit() const {
-  if (!params_.dynamic_solid || radius_.empty()) return {};
+std::vector<StabilityLimit> PorePressureModel::limits() const {
+  std::vector<StabilityLimit> out = {diffusion_limit()};
+  // The pore fluid's stiffness under a lagged force (DESIGN section 5; see kFluidStiffnessC),
+  // only when the DEM moves the particles by the fluid force.
   const double stiffness = params_.alpha * params_.bulk_modulus_pa;  // k_f [N/m per m]
-  if (!(stiffness > 0.0)) return {};
+  if (!params_.dynamic_solid || radius_.empty() || !(stiffness > 0.0)) return out;
   const double r_min = *std::min_element(radius_.begin(), radius_.end());
   const double m_min = params_.grain_density_kg_m3 * std::numbers::pi * r_min * r_min;
   const double dt = kFluidStiffnessC * params_.local_damping * std::sqrt(m_min / stiffness);
-  return {{"pore_fluid_stiffness", dt,
-           "lagged fluid force: C alpha_d sqrt(m_min / (alpha M)) with C = " +
-               fmt(kFluidStiffnessC) + ", local damping alpha_d = " + fmt(params_.local_damping) +
-               ", m_min = " + fmt(m_min) + " kg/m, alpha M = " + fmt(stiffness) +
-               " Pa; binds only N > 1",
-           /*lag_only=*/true}};
+  out.push_back({"pore_fluid_stiffness", dt,
+                 "lagged fluid force: C alpha_d sqrt(m_min / (alpha M)) with C = " +
+                     fmt(kFluidStiffnessC) + ", local damping alpha_d = " +
+                     fmt(params_.local_damping) + ", m_min = " + fmt(m_min) +
+                     " kg/m, alpha M = " + fmt(stiffness) + " Pa; binds only N > 1",
+                 /*lag_only=*/true});
+  return out;
 }
 
 bool PorePressureModel::probe(std::span<const double> position, const ProbeBox& box,

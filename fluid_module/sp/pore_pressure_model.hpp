@@ -48,6 +48,8 @@ class PorePressureModel : public FluidModel {
             std::span<double> force) override;
   void output(const std::string& field, std::vector<double>& values) const override;
   void scalars(std::vector<std::pair<std::string, double>>& out) const override;
+  /// The model's diffusion limit, then the pore fluid's stiffness limit (when the DEM is dynamic).
+  std::vector<StabilityLimit> limits() const final;
   bool probe(std::span<const double> position, const ProbeBox& box, double& mean_pa,
              std::size_t& count) const override;
 
@@ -64,9 +66,8 @@ class PorePressureModel : public FluidModel {
   std::size_t cavitated() const { return cavitated_; }
 
  protected:
-  /// The limit the pore fluid's stiffness sets on the fluid step when the DEM moves the particles
-  /// by the fluid force (DESIGN section 5; see kFluidStiffnessC). Empty for prescribed motion.
-  std::vector<StabilityLimit> stiffness_limit() const;
+  /// The step limit of the model's own time integration of eq. 14 (stability or accuracy).
+  virtual StabilityLimit diffusion_limit() const = 0;
   /// Advances pressure_ by dt with the source -alpha M strain_rate_ (Pa/s), holding drained
   /// particles at p_hydro and clamping by eq. 22. Called once per step with dt > 0.
   virtual void advance(double dt_s) = 0;

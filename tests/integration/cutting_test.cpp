@@ -37,29 +37,11 @@ const std::vector<std::string> kSmallCut = {
 // check); the coupler then reports "refused by dem_module" (coupler/run/run_session.cpp).
 constexpr int kExitBadInput = 2;
 
-struct CutRun {
-  fs::path out;
-  int code = -1;
-  std::string err;
-};
-
 // Runs the small cut with extra arguments into a fresh directory.
-CutRun run_small_cut(const std::string& name, const std::vector<std::string>& extra = {}) {
-  const fs::path dir = fresh_dir(name);
-  std::vector<std::string> argv = {bin("coupler"), "run", kScene, "--out", (dir / "out").string()};
-  argv.insert(argv.end(), kSmallCut.begin(), kSmallCut.end());
-  argv.insert(argv.end(), extra.begin(), extra.end());
-  CutRun r;
-  r.out = dir / "out";
-  std::string out;
-  r.code = run(argv, dir, "coupler", &out, &r.err, std::chrono::milliseconds(60000));
-  return r;
-}
-
-std::string last_frame(const H5Reader& h5) {
-  auto frames = h5.members("/frames");
-  if (frames.empty()) throw std::runtime_error("run.h5 has no frames");
-  return "/frames/" + *std::max_element(frames.begin(), frames.end());
+CouplerRun run_small_cut(const std::string& name, const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> args = kSmallCut;
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_coupler(kScene, args, fresh_dir(name), std::chrono::milliseconds(60000));
 }
 
 // Every time series (step is uint64 and follows time_s), /breaks and the last frame's positions of
@@ -174,7 +156,7 @@ TEST(Cutting, SmallDryCutWritesForcesBreaksAndDamage) {
 }
 
 TEST(Cutting, SameSeedOneThreadIsBitIdentical) {
-  const CutRun a = run_small_cut("repro_1a"), b = run_small_cut("repro_1b");
+  const CouplerRun a = run_small_cut("repro_1a"), b = run_small_cut("repro_1b");
   ASSERT_EQ(a.code, 0) << a.err;
   ASSERT_EQ(b.code, 0) << b.err;
   expect_bit_identical_runs(a.out, b.out);
@@ -185,8 +167,8 @@ TEST(Cutting, SameSeedTwoThreadsIsBitIdentical) {
   // many times slower (measured: 47 s instead of 7 s for 90,000 steps); a passive wait policy
   // changes the timing only, never the arithmetic.
   setenv("OMP_WAIT_POLICY", "passive", 1);
-  const CutRun a = run_small_cut("repro_2a", {"--set", "dem.threads=2"});
-  const CutRun b = run_small_cut("repro_2b", {"--set", "dem.threads=2"});
+  const CouplerRun a = run_small_cut("repro_2a", {"--set", "dem.threads=2"});
+  const CouplerRun b = run_small_cut("repro_2b", {"--set", "dem.threads=2"});
   unsetenv("OMP_WAIT_POLICY");
   ASSERT_EQ(a.code, 0) << a.err;
   ASSERT_EQ(b.code, 0) << b.err;
@@ -194,7 +176,8 @@ TEST(Cutting, SameSeedTwoThreadsIsBitIdentical) {
 }
 
 TEST(Cutting, AnotherSeedGivesAnotherRun) {
-  const CutRun a = run_small_cut("seed_1"), b = run_small_cut("seed_2", {"--set", "dem.specimen.seed=2"});
+  const CouplerRun a = run_small_cut("seed_1");
+  const CouplerRun b = run_small_cut("seed_2", {"--set", "dem.specimen.seed=2"});
   ASSERT_EQ(a.code, 0) << a.err;
   ASSERT_EQ(b.code, 0) << b.err;
   const H5Reader ha(a.out / "run.h5"), hb(b.out / "run.h5");

@@ -1,5 +1,7 @@
 #include "integration/h5_read.hpp"
 
+#include <algorithm>
+
 #include <hdf5.h>
 
 #include <cstdlib>
@@ -69,6 +71,12 @@ std::string H5Reader::root_attribute(const std::string& name) const {
   H5Tclose(type);
   H5Aclose(attr);
   return value;
+}
+
+std::string last_frame(const H5Reader& h5) {
+  auto frames = h5.members("/frames");
+  if (frames.empty()) throw std::runtime_error("run.h5 has no frames");
+  return "/frames/" + *std::max_element(frames.begin(), frames.end());
 }
 
 }  // namespace rockcut::test

@@ -26,4 +26,7 @@ class H5Reader {
   long long file_;
 };
 
+/// The path of the last group under /frames ("/frames/NNNNNN"); throws if there is none.
+std::string last_frame(const H5Reader& h5);
+
 }  // namespace rockcut::test

@@ -158,4 +158,15 @@ fs::path fresh_dir(const std::string& name) {
   return dir;
 }
 
+CouplerRun run_coupler(const std::string& scene, const std::vector<std::string>& args,
+                       const fs::path& dir, std::chrono::milliseconds timeout) {
+  std::vector<std::string> argv = {bin("coupler"), "run", scene, "--out", (dir / "out").string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  CouplerRun r;
+  r.out = dir / "out";
+  std::string out;
+  r.code = run(argv, dir, "coupler", &out, &r.err, timeout);
+  return r;
+}
+
 }  // namespace rockcut::test

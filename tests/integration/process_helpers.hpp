@@ -36,6 +36,17 @@ int run(const std::vector<std::string>& argv, const std::filesystem::path& dir,
         const std::string& tag, std::string* out = nullptr, std::string* err = nullptr,
         std::chrono::milliseconds timeout = std::chrono::milliseconds(120000));
 
+/// What `coupler run` left: its output directory, exit code and stderr.
+struct CouplerRun {
+  std::filesystem::path out;
+  int code = -1;
+  std::string err;
+};
+
+/// Runs `coupler run SCENE --out DIR/out ARGS...` in `dir` to completion (killed after `timeout`).
+CouplerRun run_coupler(const std::string& scene, const std::vector<std::string>& args,
+                       const std::filesystem::path& dir, std::chrono::milliseconds timeout);
+
 /// Direct children of `pid` (from /proc).
 std::vector<pid_t> children_of(pid_t pid);
 /// Waits until `pid` has at least `n` children; returns them (empty on timeout).

@@ -39,29 +39,11 @@ const std::vector<std::string> kSmallCut = {
     "--set", "fluid.smoothing_length_m=0.012",   "--set", "time.end_time_s=0.008",
     "--set", "dem.tool.steady_after_m=0.004",    "--set", "output.frame_interval_s=0.004"};
 
-struct CutRun {
-  fs::path out;
-  int code = -1;
-  std::string err;
-};
-
-CutRun run_small_cut(const std::string& name, const std::vector<std::string>& extra = {}) {
+CouplerRun run_small_cut(const std::string& name, const std::vector<std::string>& extra = {}) {
   const fs::path dir = fresh_dir(name);
-  std::vector<std::string> argv = {bin("coupler"), "run", small_scene(dir).string(), "--out",
-                                   (dir / "out").string()};
-  argv.insert(argv.end(), kSmallCut.begin(), kSmallCut.end());
-  argv.insert(argv.end(), extra.begin(), extra.end());
-  CutRun r;
-  r.out = dir / "out";
-  std::string out;
-  r.code = run(argv, dir, "coupler", &out, &r.err, std::chrono::milliseconds(90000));
-  return r;
-}
-
-std::string last_frame(const H5Reader& h5) {
-  auto frames = h5.members("/frames");
-  if (frames.empty()) throw std::runtime_error("run.h5 has no frames");
-  return "/frames/" + *std::max_element(frames.begin(), frames.end());
+  std::vector<std::string> args = kSmallCut;
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_coupler(small_scene(dir).string(), args, dir, std::chrono::milliseconds(90000));
 }
 
 void expect_coupled_cutting_summary(const Summary& s, const std::string& model) {
@@ -88,7 +70,7 @@ void expect_coupled_cutting_summary(const Summary& s, const std::string& model) 
 }
 
 TEST(SaturatedCutting, ExplicitModelWritesPressureNodesRegimeAndSealsAtTheTool) {
-  const CutRun r = run_small_cut("explicit");
+  const CouplerRun r = run_small_cut("explicit");
   ASSERT_EQ(r.code, 0) << r.err;
   const Summary s = Summary::read(r.out / "summary.json");
   expect_coupled_cutting_summary(s, "explicit");
@@ -113,7 +95,7 @@ TEST(SaturatedCutting, ExplicitModelWritesPressureNodesRegimeAndSealsAtTheTool) 
 }
 
 TEST(SaturatedCutting, ImplicitModelByOneSceneLine) {
-  const CutRun r = run_small_cut("implicit", {"--set", "fluid.model=implicit"});
+  const CouplerRun r = run_small_cut("implicit", {"--set", "fluid.model=implicit"});
   ASSERT_EQ(r.code, 0) << r.err;
   expect_coupled_cutting_summary(Summary::read(r.out / "summary.json"), "implicit");
 }
@@ -124,18 +106,18 @@ TEST(SaturatedCutting, FluidExecutableGivenByPath) {
   const fs::path dir = fresh_dir("fluid_exe");
   const fs::path exe = dir / "my_fluid_model";
   fs::copy_file(bin("fluid_module"), exe);
-  const CutRun r = run_small_cut("by_path", {"--set", "fluid.executable=" + exe.string()});
+  const CouplerRun r = run_small_cut("by_path", {"--set", "fluid.executable=" + exe.string()});
   ASSERT_EQ(r.code, 0) << r.err;
   expect_coupled_cutting_summary(Summary::read(r.out / "summary.json"), "explicit");
   EXPECT_NE(r.err.find("my_fluid_model"), std::string::npos) << r.err;
 
-  const CutRun bad = run_small_cut("bad_path", {"--set", "fluid.executable=/nonexistent/fluid"});
+  const CouplerRun bad = run_small_cut("bad_path", {"--set", "fluid.executable=/nonexistent/fluid"});
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.err.find("/nonexistent/fluid"), std::string::npos) << bad.err;
 }
 
 TEST(SaturatedCutting, CouplingIntervalAboveTheFluidStiffnessLimitIsRefused) {
-  const CutRun r = run_small_cut("too_large_n", {"--set", "coupling.interval=100000"});
+  const CouplerRun r = run_small_cut("too_large_n", {"--set", "coupling.interval=100000"});
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("pore_fluid_stiffness"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("use coupling.interval <="), std::string::npos) << r.err;
@@ -144,7 +126,7 @@ TEST(SaturatedCutting, CouplingIntervalAboveTheFluidStiffnessLimitIsRefused) {
 
 TEST(SaturatedCutting, WithoutDampingTheFluidForceDoesNotLag) {
   // The lagged force is a negative damping that only local damping removes: undamped, N = 1.
-  const CutRun r = run_small_cut("undamped", {"--set", "dem.local_damping=0",
+  const CouplerRun r = run_small_cut("undamped", {"--set", "dem.local_damping=0",
                                               "--set", "time.end_time_s=0.002"});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(number(Summary::read(r.out / "summary.json"), "coupling_interval"), 1);

@@ -1,0 +1,301 @@
+#!/usr/bin/python3
+"""The figures of scripts/sweep (paper figures 8-12, break fractions, chips) from a sweep folder.
+
+A sweep folder holds one run folder per value, DIR/<name>=<value> (run_dir), with the run's
+summary.json and run.h5, and the collected DIR/sweep.csv. `draw(Sweep(DIR, name, rows))` draws
+every figure whose data the rows have and notes the ones it skips.
+"""
+import glob
+import math
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+# plot_cutting reads run.h5 and draws discs; it also sets the Agg backend and HDF5 file locking.
+import plot_cutting  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.patches import Polygon  # noqa: E402
+from matplotlib.ticker import MaxNLocator, NullLocator  # noqa: E402
+
+
+def note(message):
+    sys.stdout.flush()  # keep the notes in order with the progress lines
+    print(f"note: {message}", file=sys.stderr)
+
+
+def as_number(value):
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return None
+
+
+def run_dir(out, name, value):
+    return os.path.join(out, f"{name}={value}")
+
+
+UNITS = (("_m_s", "m/s"), ("_m2", "m²"), ("_pa", "Pa"), ("_deg", "°"), ("_s", "s"), ("_m", "m"))
+
+
+def axis_label(name):
+    """'tool.velocity_m_s' -> 'tool.velocity [m/s]' (the unit from the field's suffix)."""
+    for suffix, unit in UNITS:
+        if name.endswith(suffix):
+            return f"{name[:-len(suffix)]} [{unit}]"
+    return name
+
+
+def value_unit(name):
+    for suffix, unit in UNITS:
+        if name.endswith(suffix):
+            return " " + unit
+    return ""
+
+
+class Sweep:
+    """The collected rows, sorted by the varied value, with helpers to pull out columns."""
+
+    def __init__(self, out, name, rows):
+        self.out, self.name = out, name
+        self.numeric = all(as_number(r[name]) is not None for r in rows)
+        self.rows = sorted(rows, key=lambda r: float(r[name])) if self.numeric else rows
+        self.values = [r[name] for r in self.rows]
+        # Non-numeric values (e.g. fluid.model=explicit,implicit) are drawn at 0, 1, 2, ...
+        self.x = (np.array([float(v) for v in self.values]) if self.numeric
+                  else np.arange(len(self.values), dtype=float))
+
+    def column(self, key):
+        """The key's values as floats (NaN where missing), or None if no run has it."""
+        col = np.array([as_number(r.get(key)) for r in self.rows], dtype=float)  # None -> NaN
+        if np.isnan(col).all():
+            return None
+        return col
+
+    def columns(self, keys, figure):
+        """{key: column} of the keys some run has; notes the others."""
+        found = {k: self.column(k) for k in keys}
+        missing = [k for k, c in found.items() if c is None]
+        if missing:
+            note(f"{figure}: no run's summary has {', '.join(missing)}; "
+                 + ("left out of it" if len(missing) < len(keys) else "not drawn"))
+        return {k: c for k, c in found.items() if c is not None}
+
+    def pressure_axis(self):
+        """x for figures 8-10: the hydrostatic pressure in MPa when water depth is varied (as in the
+        paper), else the varied value. Returns (x, label, is_pressure)."""
+        p = self.column("hydrostatic_pressure_pa")
+        if self.name == "water_depth_m" and p is not None and not np.isnan(p).any():
+            return p / 1e6, "hydrostatic pressure [MPa]", True
+        return self.x, axis_label(self.name), False
+
+    def path(self, filename):
+        return os.path.join(self.out, filename)
+
+
+def set_x_scale(ax, x):
+    """Log x when the values span a decade or more; symlog when 0 is among them (water depth 0 m),
+    linear up to the smallest non-zero value so that 0 gets a place. Returns True if not linear."""
+    pos = x[np.isfinite(x) & (x > 0)]
+    if len(pos) < 2 or pos.max() / pos.min() < 10 or (x < 0).any():
+        return False
+    if (x == 0).any():
+        ax.set_xscale("symlog", linthresh=pos.min(), linscale=0.5)
+    else:
+        ax.set_xscale("log")
+    return True
+
+
+def value_axis(s, ax, x_is_pressure):
+    """Scale and ticks of the x axis; on pressure axes the water depths are marked along the top."""
+    x = s.pressure_axis()[0] if x_is_pressure else s.x
+    logarithmic = set_x_scale(ax, x)
+    if (not s.numeric or logarithmic) and not x_is_pressure:
+        # Ticks at the values themselves: names, or plain numbers instead of powers of ten.
+        ax.set_xticks(s.x)
+        ax.set_xticklabels(s.values)
+        ax.xaxis.set_minor_locator(NullLocator())
+    if x_is_pressure:
+        top = ax.secondary_xaxis("top")
+        top.set_xticks(x)
+        top.set_xticklabels(s.values, fontsize=8)
+        top.xaxis.set_minor_locator(NullLocator())
+        top.set_xlabel(axis_label(s.name), fontsize=9)
+    ax.grid(True, which="major", alpha=0.3)
+
+
+def plot_series(ax, x, y, *args, **kw):
+    """Points and lines through the runs that have the value: a failed run (NaN) leaves its point
+    out without breaking the line."""
+    ok = np.isfinite(x) & np.isfinite(y)
+    ax.plot(x[ok], y[ok], *args, **kw)
+
+
+def save(fig, s, filename):
+    fig.tight_layout()
+    fig.savefig(s.path(filename))
+    plt.close(fig)
+    print(f"wrote {s.path(filename)}", flush=True)
+
+
+def remove_stale(s, pattern):
+    """A figure that is not drawn this time must not be left from an earlier sweep in DIR."""
+    for f in glob.glob(s.path(pattern)):
+        os.remove(f)
+
+
+def line_figure(s, filename, title, series, ylabel, scale, against_pressure):
+    """One panel of lines: series = [(key, legend label, colour)], values multiplied by `scale`."""
+    remove_stale(s, filename)
+    cols = s.columns([k for k, _, _ in series], filename)
+    if not cols:
+        return
+    if against_pressure:
+        x, xlabel, is_pressure = s.pressure_axis()
+    else:
+        x, xlabel, is_pressure = s.x, axis_label(s.name), False
+    fig, ax = plt.subplots(figsize=(7, 4.5), dpi=100)
+    for key, label, colour in series:
+        if key in cols:
+            plot_series(ax, x, cols[key] * scale, "o-", color=colour, label=label)
+    ax.axhline(0, color="k", lw=0.5)
+    value_axis(s, ax, is_pressure)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=8)
+    save(fig, s, filename)
+
+
+def fig_forces(s):
+    line_figure(s, "fig08_forces.png", "Mean tool forces over the steady part of the cut (fig. 8)",
+                [("force_horizontal_mean_n_per_m", "horizontal (resisting the cut)", "tab:blue"),
+                 ("force_vertical_mean_n_per_m", "vertical (up > 0)", "tab:orange")],
+                "mean force on the tool [kN per m of width]", 1e-3, against_pressure=True)
+
+
+def fig_pressure_p1(s):
+    line_figure(s, "fig09_pressure_p1.png", "Mean pore pressure at P1 (fig. 9)",
+                [("pressure_p1_mean_pa", "P1", "tab:blue")],
+                "mean excess pore pressure p - p_hydro [MPa]", 1e-6, against_pressure=True)
+
+
+def fig_pressure_p2_p3(s):
+    line_figure(s, "fig10_pressure_p2_p3.png", "Mean pore pressures at P2 and P3 (fig. 10)",
+                [("pressure_p2_mean_pa", "P2", "tab:green"),
+                 ("pressure_p3_mean_pa", "P3", "tab:red")],
+                "mean excess pore pressure p - p_hydro [MPa]", 1e-6, against_pressure=True)
+
+
+def fig_breaks_fraction(s):
+    filename = "breaks_fraction.png"
+    remove_stale(s, filename)
+    cols = s.columns(["breaks_tensile", "breaks_shear"], filename)
+    if len(cols) < 2:
+        return
+    total = cols["breaks_tensile"] + cols["breaks_shear"]
+    with np.errstate(invalid="ignore", divide="ignore"):  # no breaks at all: no fraction (NaN)
+        tensile = np.where(total > 0, cols["breaks_tensile"] / total, np.nan)
+    fig, ax = plt.subplots(figsize=(7, 4.5), dpi=100)
+    plot_series(ax, s.x, tensile, "o-", color="tab:blue", label="tensile")
+    plot_series(ax, s.x, 1 - tensile, "s-", color="tab:red", label="shear")
+    for xi, n in zip(s.x, total):
+        if np.isfinite(n):
+            ax.annotate(f"{int(n)}", (xi, 1.0), textcoords="offset points", xytext=(0, 3),
+                        ha="center", fontsize=7, color="0.4")
+    value_axis(s, ax, False)
+    ax.set_ylim(0, 1.08)
+    ax.set_xlabel(axis_label(s.name))
+    ax.set_ylabel("fraction of the broken bonds [-]")
+    ax.set_title("Bond breaks by mode (number of breaks above the points)", fontsize=10)
+    # Outside the axes: inside it would hide the counts along the top.
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    save(fig, s, filename)
+
+
+def fig_chips(s):
+    filename = "chips.png"
+    remove_stale(s, filename)
+    cols = s.columns(["chips", "chip_area_mean_m2"], filename)
+    if not cols:
+        return
+    panels = [("chips", "chips [count]", 1.0, "tab:blue"),
+              ("chip_area_mean_m2", "mean chip area [mm²]", 1e6, "tab:orange")]
+    panels = [p for p in panels if p[0] in cols]
+    fig, axes = plt.subplots(len(panels), 1, figsize=(7, 2.6 * len(panels) + 1), dpi=100,
+                             sharex=True, squeeze=False)
+    for ax, (key, ylabel, scale, colour) in zip(axes[:, 0], panels):
+        plot_series(ax, s.x, cols[key] * scale, "o-", color=colour)
+        ax.set_ylabel(ylabel)
+        ax.set_ylim(bottom=0)
+        if key == "chips":
+            ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+        value_axis(s, ax, False)
+    axes[-1, 0].set_xlabel(axis_label(s.name))
+    axes[0, 0].set_title("Chips cut off at the end of the run", fontsize=10)
+    save(fig, s, filename)
+
+
+def fig_damage(s, value, filename, figure_no):
+    """Discs of the run's last complete frame coloured by damage, with the chisel, in mm."""
+    h5 = os.path.join(run_dir(s.out, s.name, value), "run.h5")
+    if not os.path.isfile(h5):
+        note(f"{filename}: no {h5}; not drawn")
+        return
+    d = plot_cutting.load(h5)
+    if d.last is None:
+        note(f"{filename}: {h5} has no frame with damage; not drawn")
+        return
+    pos, radius, damage, t = d.last
+    pos, radius = pos * 1e3, radius * 1e3  # mm
+    tool = plot_cutting.tool_block(d.scene)
+    # The chisel where dem_module puts it at the frame's time (as plot_cutting.plot_damage does).
+    poly = None
+    ts = d.ts
+    if (d.first is not None and "tool_travel_m" in ts and "time_s" in ts and len(ts["time_s"])
+            and not math.isnan(t)):
+        p0, r0 = d.first
+        left, top = (p0[:, 0] - r0).min(), (p0[:, 1] + r0).max()
+        travel = np.interp(t, ts["time_s"], ts["tool_travel_m"])
+        poly = plot_cutting.tool_polygon(tool, left + travel, top - tool["cutting_depth_m"]) * 1e3
+    fig, ax = plt.subplots(figsize=(8, 5), dpi=plot_cutting.dpi_for(radius))
+    coll = plot_cutting.discs(ax, pos, radius, array=np.clip(damage, 0, 1), cmap="jet",
+                              linewidths=0)
+    coll.set_clim(0, 1)
+    if poly is not None:
+        ax.add_patch(Polygon(poly, closed=True, fc="0.5", ec="k", lw=0.8, zorder=3))
+    plot_cutting.frame_extent(ax, pos, radius, poly)  # also sets the equal aspect
+    fig.colorbar(coll, ax=ax, shrink=0.8, label="damage D = 1 - bonds / initial bonds [-]")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title(f"Damage at {s.name} = {value}{value_unit(s.name)}, t = {t:.4g} s "
+                 f"(fig. {figure_no})", fontsize=10)
+    save(fig, s, filename)
+
+
+def draw(s):
+    fig_forces(s)
+    fig_pressure_p1(s)
+    fig_pressure_p2_p3(s)
+    fig_breaks_fraction(s)
+    fig_chips(s)
+    # Figures 11 and 12: the smallest and the largest value (0 m and 2000 m in the paper), or the
+    # nearest to them that left a run.h5 when a run failed.
+    remove_stale(s, "fig11_damage_*.png")
+    remove_stale(s, "fig12_damage_*.png")
+    have = [v for v in s.values
+            if os.path.isfile(os.path.join(run_dir(s.out, s.name, v), "run.h5"))]
+    if not have:
+        note("fig11/fig12: no run left a run.h5; not drawn")
+        return
+    for value, wanted in ((have[0], s.values[0]), (have[-1], s.values[-1])):
+        if value != wanted:
+            note(f"{s.name}={wanted} has no run.h5: damage drawn for {s.name}={value} instead")
+    ends = [(have[0], 11)] + ([(have[-1], 12)] if len(have) > 1 else [])
+    for value, no in ends:
+        try:
+            fig_damage(s, value, f"fig{no}_damage_{value}.png", no)
+        except (OSError, KeyError, ValueError) as e:  # e.g. a run.h5 cut short by a crash
+            note(f"fig{no}_damage_{value}.png: {type(e).__name__}: {e}; not drawn")

@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
   rockcut::wire::tune_allocator_for_bulk_frames();
   CLI::App app{"rockcut coupler: runs discrete-element rock cutting coupled to a pore-pressure "
                "model (Helmons, Miedema & van Rhee). Exit codes: 0 ok, 1 verification failed, "
-               "2 bad scene or refused settings, 3 a module failed, 128+N stopped by signal N."};
+               "2 bad scene or refused settings, 3 a module failed, 4 a runtime guard stopped the run "
+               "(NaN, runaway kinetic energy, excessive overlap), 128+N stopped by signal N."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("coupler ") + ROCKCUT_VERSION);
 

@@ -91,6 +91,9 @@ void RunSession::exchange(unsigned steps, bool initial) {
   fluid_request_.take_arrays(reply_);
   fluid_->link->request(fluid_request_, fluid_reply_);
   fluid_busy_s_ = fluid_reply_.envelope.busy_s();
+  if (fluid_reply_.envelope.fluid_result().has_guard()) {
+    throw GuardStop{fluid_->link->label(), fluid_reply_.envelope.fluid_result().guard()};
+  }
   bytes_exchanged_ += fluid_reply_.payload_bytes();
 
   // 3. DEM: total force at x^{n+N}, second half kick.
@@ -133,6 +136,7 @@ void RunSession::record_step_report(const wire::StepReport& report) {
   // protobuf maps have no stable order: sort so every run writes the same columns.
   for (const auto& [name, value] : report.scalars()) scalars_.emplace_back(name, value);
   std::sort(scalars_.begin(), scalars_.end());
+  if (report.has_guard()) throw GuardStop{dem_.link->label(), report.guard()};
 }
 
 void RunSession::maybe_record(bool last) {

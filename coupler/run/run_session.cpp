@@ -154,6 +154,7 @@ void RunSession::init_modules() {
   // Subscribe the DEM to exactly the kinematics the fluid model needs: nothing else is sent.
   request_.clear();
   wire::Subscribe* sub = request_.envelope.mutable_subscribe();
+  sub->set_external_force_supplies_energy(fluid_->init.supplies_energy());
   for (const std::string& f : fluid_->init.needs()) {
     if (!contains(dem_.init.provides(), f)) {
       throw wire::ModuleFailure(fluid_->link->label(),
@@ -337,6 +338,8 @@ int RunSession::run() {
                  e.what(), time_s_, static_cast<unsigned long long>(step_),
                  options_.out_dir.c_str());
     return finish(kExitModuleFailed, "failed", e.what());
+  } catch (const GuardStop& stop) {
+    return stop_on_guard(stop);
   } catch (const wire::Interrupted&) {
     const int sig = stop_signal();
     std::fprintf(stderr, "\nstopped by signal %d at t = %.6g s (step %llu); output so far in %s\n",
@@ -363,6 +366,33 @@ int RunSession::run() {
   return finish(code, "completed", "");
 }
 
+int RunSession::stop_on_guard(const GuardStop& stop) {
+  const wire::GuardTrip& g = stop.trip;
+  std::fprintf(stderr,
+               "\nerror: %s stopped the run (guard %s): %s\n"
+               "       at t = %.6g s (step %llu), particle %lld at (%.6g, %.6g) m; output so far, "
+               "with the last frame, in %s\n",
+               stop.module.c_str(), g.guard().c_str(), g.message().c_str(), g.time_s(),
+               static_cast<unsigned long long>(step_), static_cast<long long>(g.particle()),
+               g.x_m(), g.y_m(), options_.out_dir.c_str());
+  // The state that tripped the guard, for a look in ParaView; the modules still answer frames.
+  try {
+    run_file_->append_timeseries(time_s_, step_, scalars_);
+    write_frame();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "       (the last frame could not be written: %s)\n", e.what());
+  }
+  summary_.set("failure_guard", g.guard());
+  summary_.set("failure_module", stop.module);
+  summary_.set("failure_time_s", g.time_s());
+  summary_.set("failure_particle", static_cast<std::int64_t>(g.particle()));
+  summary_.set("failure_x_m", g.x_m());
+  summary_.set("failure_y_m", g.y_m());
+  summary_.set("failure_value", g.value());
+  summary_.set("failure_limit", g.limit());
+  return finish(kExitUnstable, "failed", g.guard() + " guard: " + g.message());
+}
+
 int RunSession::finish(int code, const std::string& status, const std::string& reason) {
   const double wall = progress_ ? progress_->elapsed_s() : 0.0;
   summary_.set("status", status);
@@ -379,6 +409,11 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
   // Where the wall time went: each module's own handling time during the loop; the rest is the
   // transport, the coupler's output and waiting (the DEM's contact forces overlap the fluid).
   summary_.set("dem_busy_s", dem_busy_s_ - dem_busy0_s_);
+  // The energy budget of DESIGN section 5 at the end (the DEM reports it with every step report).
+  const auto imbalance = std::find_if(scalars_.begin(), scalars_.end(), [](const auto& s) {
+    return s.first == "energy_imbalance_rel";
+  });
+  if (imbalance != scalars_.end()) summary_.set("energy_imbalance_rel", imbalance->second);
   if (fluid_) summary_.set("fluid_busy_s", fluid_busy_s_ - fluid_busy0_s_);
   try {
     if (run_file_) {
@@ -390,6 +425,10 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
   } catch (const std::exception& e) {
     std::cerr << "error: closing the output in " << options_.out_dir << ": " << e.what() << "\n";
     if (code == kExitOk) code = kExitBadInput;
+  }
+  if (imbalance != scalars_.end()) {
+    std::fprintf(stderr, "energy     imbalance %.3g of the energy throughput (given = kinetic + "
+                 "strain + damping + friction + broken bonds)\n", imbalance->second);
   }
   if (status == "completed") {
     std::printf("done: %llu steps of %llu particles in %.3f s wall (%.3g particle-steps/s); "

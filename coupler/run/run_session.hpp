@@ -32,6 +32,13 @@ enum ExitCode : int {
   kExitVerificationFailed = 1,
   kExitBadInput = 2,
   kExitModuleFailed = 3,
+  kExitUnstable = 4,  ///< a runtime guard stopped the run (NaN, runaway kinetic energy, overlap)
+};
+
+/// A module reported a tripped runtime guard (wire GuardTrip): the run stops as failed.
+struct GuardStop {
+  std::string module;  ///< label of the module that reported it
+  wire::GuardTrip trip;
 };
 
 struct RunOptions {
@@ -68,6 +75,8 @@ class RunSession {
   void open_output();
   void print_startup() const;
   int finish(int code, const std::string& status, const std::string& reason);
+  /// Writes the last frame and the guard into the summary; returns the exit code.
+  int stop_on_guard(const GuardStop& stop);
   std::filesystem::path module_executable(const std::string& from_scene, const char* name) const;
 
   // run_loop.cpp: the clock

@@ -36,6 +36,11 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
   for (const Limit& l : fluid_limits) plan.report.push_back("limit  " + describe(l) + " (fluid step)");
 
   const rockcut::Time& time = scene.time();
+  // A setting above a limit is refused, or with time.ignore_limits run with a warning.
+  const auto refuse = [&](const std::string& why) {
+    if (!time.ignore_limits()) throw PlanError(why);
+    plan.report.push_back("WARNING " + why + " -- running anyway (time.ignore_limits)");
+  };
   const Limit* dem_limit = smallest(dem_limits);
   const Limit* fluid_limit = smallest(fluid_limits);
   // Fluid-only scenes (prescribed motion: the DEM has no limit of its own) take the fluid step as
@@ -43,7 +48,7 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
   const bool dt_from_fluid = !time.has_dt_s() && !dem_limit && coupled && fluid_limit;
   if (time.has_dt_s()) {
     if (dem_limit && time.dt_s() > dem_limit->dt_max_s) {
-      throw PlanError("time.dt_s = " + fmt(time.dt_s()) + " s exceeds the " + dem_limit->module +
+      refuse("time.dt_s = " + fmt(time.dt_s()) + " s exceeds the " + dem_limit->module +
                       " limit " + dem_limit->name + " (" + fmt(dem_limit->dt_max_s) + " s) by " +
                       fmt(time.dt_s() / dem_limit->dt_max_s) + "x; lower time.dt_s or leave it "
                       "out to use dt_safety * limit");
@@ -72,6 +77,7 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
     for (const Limit& l : fluid_limits) {
       double n = std::floor(l.dt_max_s / plan.dt_s * (1.0 + 1e-9));
       if (l.lag_only) n = std::max(n, 1.0);
+      if (n < 1 && time.ignore_limits()) n = 1;
       if (n < 1) {
         throw PlanError("the fluid limit " + l.name + " (" + fmt(l.dt_max_s) +
                         " s) is below the DEM step " + fmt(plan.dt_s) + " s by " +
@@ -85,7 +91,7 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
     if (scene.coupling().has_interval()) {
       plan.coupling_interval = scene.coupling().interval();
       if (plan.coupling_interval > max_n) {
-        throw PlanError("coupling.interval = " + std::to_string(plan.coupling_interval) +
+        refuse("coupling.interval = " + std::to_string(plan.coupling_interval) +
                         " makes the fluid step " + fmt(plan.coupling_interval * plan.dt_s) +
                         " s, above the " + binding->module + " limit " + binding->name + " (" +
                         fmt(binding->dt_max_s) + " s) by " +

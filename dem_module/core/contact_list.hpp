@@ -31,6 +31,8 @@ class ContactList {
   double strain_energy(const Particles& p, const ContactLaw& law) const;
 
   std::size_t size() const { return i_.size(); }
+  std::uint32_t first(std::size_t k) const { return i_[k]; }
+  std::uint32_t second(std::size_t k) const { return j_[k]; }
 
  private:
   std::vector<std::uint32_t> i_, j_;

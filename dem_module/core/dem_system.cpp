@@ -74,12 +74,12 @@ void DemSystem::kick_drift(double dt, bool kick) {
   const double* fd = damping_force_.empty() ? nullptr : damping_force_.data();
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
   const bool body = has_body_forces_;
-  double vmax2 = 0.0, work = 0.0, damping = 0.0;
+  double vmax2 = 0.0, work = 0.0, gravity = 0.0, damping = 0.0;
   // Verlet moves x by v^{n+1/2} dt under the mean of F^n and F^{n+1}: each force's work over the
   // drift is the trapezoid 1/2 (F^n + F^{n+1}) . dx. The F^n halves are added here, the F^{n+1}
   // halves in finish_forces().
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1) \
-    reduction(max : vmax2) reduction(+ : work, damping)
+    reduction(max : vmax2) reduction(+ : work, gravity, damping)
   for (std::size_t i = 0; i < n; ++i) {
     if (kick) {  // eq. 6, fused with the drift: one pass over the particles
       v[2 * i] += h * f[2 * i] * inv_m[i];
@@ -91,11 +91,13 @@ void DemSystem::kick_drift(double dt, bool kick) {
     x[2 * i + 1] += dt * vy;
     vmax2 = std::max(vmax2, vx * vx + vy * vy);
     if (body) {
-      work += ((fe[2 * i] + gx / inv_m[i]) * vx + (fe[2 * i + 1] + gy / inv_m[i]) * vy) * 0.5 * dt;
+      work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * 0.5 * dt;
+      gravity += (gx * vx + gy * vy) / inv_m[i] * 0.5 * dt;
     }
     if (fd) damping -= (fd[3 * i] * vx + fd[3 * i + 1] * vy + fd[3 * i + 2] * w[i]) * 0.5 * dt;
   }
   ledger_.external_work_j += work;
+  ledger_.gravity_work_j += gravity;
   ledger_.damping_j += damping;
   // A bound on how far any disc moved since the rebuild: sum of the largest step lengths.
   max_drift_m_ += std::sqrt(vmax2) * dt;
@@ -185,14 +187,15 @@ void DemSystem::finish_forces(double kick_dt) {
   double* fd = damping_force_.data();
   const double h = 0.5 * dt_last_;  // the F^{n+1} half of the trapezoid, see drift()
   const bool body = has_body_forces_;
-  double damping = 0.0, work = 0.0;
+  double damping = 0.0, work = 0.0, gravity = 0.0;
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) \
-    if (settings_.threads > 1) reduction(+ : damping, work)
+    if (settings_.threads > 1) reduction(+ : damping, work, gravity)
   for (std::size_t i = 0; i < n; ++i) {
     double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
     const double vx = v[2 * i], vy = v[2 * i + 1];
     if (body) {
-      work += ((fe[2 * i] + gx / inv_m[i]) * vx + (fe[2 * i + 1] + gy / inv_m[i]) * vy) * h;
+      work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * h;
+      gravity += (gx * vx + gy * vy) / inv_m[i] * h;
     }
     if (alpha > 0) {
       // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
@@ -218,6 +221,7 @@ void DemSystem::finish_forces(double kick_dt) {
   }
   ledger_.damping_j += damping;
   ledger_.external_work_j += work;
+  ledger_.gravity_work_j += gravity;
 }
 
 void DemSystem::step(double dt) {
@@ -279,7 +283,8 @@ double DemSystem::kinetic_energy() const {
 }
 
 double DemSystem::strain_energy() const {
-  return bonds_.strain_energy(particles_) + contacts_.strain_energy(particles_, settings_.contact);
+  return bonds_.strain_energy(particles_) + contacts_.strain_energy(particles_, settings_.contact) +
+         walls_.strain_energy(particles_, settings_.contact);
 }
 
 }  // namespace rockcut::dem

@@ -1,5 +1,5 @@
 // Energy bookkeeping for the budget of DESIGN section 5 (per metre of thickness):
-//   work in (walls, tool, external and body forces) = kinetic + strain + damping + friction
+//   work in (walls, tool, external force, gravity) = kinetic + strain + damping + friction
 //                                                     + energy of broken bonds.
 // The step loop adds to these with OpenMP reductions; nothing is computed that is not asked for
 // elsewhere.
@@ -9,7 +9,8 @@ namespace rockcut::dem {
 
 struct EnergyLedger {
   double boundary_work_j = 0.0;   ///< done by walls and the tool on the particles
-  double external_work_j = 0.0;   ///< done by the fluid force and gravity
+  double external_work_j = 0.0;   ///< done by the external (fluid) force
+  double gravity_work_j = 0.0;    ///< done by gravity
   double damping_j = 0.0;         ///< dissipated by local damping (>= 0)
   double friction_j = 0.0;        ///< dissipated by sliding contacts (>= 0)
   double broken_bond_j = 0.0;     ///< elastic energy released by bond breaks

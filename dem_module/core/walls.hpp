@@ -45,6 +45,10 @@ class WallSet {
   /// bodies did on the discs over dt to `boundary_work_j` and friction work to `friction_j`.
   void compute(const Particles& p, const ContactLaw& law, double dt, ForceView out,
                double& boundary_work_j, double& friction_j);
+  /// Elastic energy in the disc-wall contacts [J/m] (normal and tangential springs).
+  double strain_energy(const Particles& p, const ContactLaw& law) const;
+  /// Largest overlap of a disc with a wall as a ratio of its radius; `particle` gets the disc.
+  double largest_overlap_ratio(const Particles& p, std::int64_t& particle) const;
 
  private:
   std::vector<WallBody> bodies_;

@@ -11,6 +11,10 @@ namespace rockcut::dem {
 
 namespace {
 
+// Guards inside a long Advance every this many steps: one pass over particles, bonds and contacts
+// per 50 steps, about 1 % of the step cost.
+constexpr unsigned kGuardEverySteps = 50;
+
 // Fields this module can put on the wire: per particle, plus "breaks" (the bond breaks since the
 // last request, as arrays break_time_s, break_position, break_mode with 0 tensile, 1 shear).
 const std::vector<std::string_view> kProvided = {
@@ -69,6 +73,7 @@ void DemService::subscribe(const wire::Subscribe& subscribe, wire::Message& repl
     }
   }
   send_fields_.assign(subscribe.fields().begin(), subscribe.fields().end());
+  setup_.guards.external_force_supplies_energy = subscribe.external_force_supplies_energy();
   reply.envelope.mutable_ack();
 }
 
@@ -81,11 +86,23 @@ void DemService::after_reply() {
 
 void DemService::advance(const wire::Advance& advance, wire::Message& reply) {
   DemSystem& s = system();
+  if (!stopped_by_.empty()) {
+    throw std::runtime_error("dem_module: stopped by the " + stopped_by_ +
+                             " guard; only frames can be asked for");
+  }
   const double dt = advance.dt_s();
   if (advance.steps() > 0 && !(dt > 0.0)) throw std::invalid_argument("Advance with dt_s <= 0");
   const unsigned full_steps = advance.split_last() && advance.steps() > 0 ? advance.steps() - 1
                                                                             : advance.steps();
-  for (unsigned k = 0; k < full_steps; ++k) s.step(dt);
+  for (unsigned k = 0; k < full_steps; ++k) {
+    s.step(dt);
+    // A long dry Advance is checked on the way (the report checks again at its end): a blow-up
+    // stops within kGuardEverySteps steps, with the state that tripped the guard.
+    if (k % kGuardEverySteps == kGuardEverySteps - 1 && k + 1 < full_steps &&
+        check_guards(s, setup_.guards, setup_.initial_energy_j, s.kinetic_energy()).tripped()) {
+      break;
+    }
+  }
   if (!advance.split_last()) return report(reply);
 
   if (advance.steps() > 0) s.begin_step(dt);
@@ -122,13 +139,28 @@ void DemService::report(wire::Message& reply) {
   r->set_time_s(s.time_s());
   r->set_step(s.step_count());
   auto& out = *r->mutable_scalars();
-  out["kinetic_energy_j"] = s.kinetic_energy();
+  const double kinetic = s.kinetic_energy();
+  out["kinetic_energy_j"] = kinetic;
+  check_guards_into(kinetic, *r);
   if (!s.bonds().size() && s.contacts().size() == 0 && s.walls().empty()) return;
 
   const EnergyLedger& e = s.ledger();
-  out["strain_energy_j"] = s.strain_energy();
+  const double strain = s.strain_energy();
+  out["strain_energy_j"] = strain;
+  // The energy budget (DESIGN section 5): what the run was given (initial energy, work of the
+  // walls, the tool and the external forces) against where it went. The imbalance is relative to
+  // the energy throughput, so that work given and taken back (a fluid force) counts both ways.
+  const double given =
+      setup_.initial_energy_j + e.boundary_work_j + e.external_work_j + e.gravity_work_j;
+  const double held = kinetic + strain + e.damping_j + e.friction_j + e.broken_bond_j;
+  const double throughput =
+      setup_.initial_energy_j + std::abs(e.boundary_work_j) + std::abs(e.external_work_j) +
+      std::abs(e.gravity_work_j);
+  out["energy_imbalance_j"] = given - held;
+  out["energy_imbalance_rel"] = throughput > 0 ? std::abs(given - held) / throughput : 0.0;
   out["boundary_work_j"] = e.boundary_work_j;
   out["external_work_j"] = e.external_work_j;
+  out["gravity_work_j"] = e.gravity_work_j;
   out["damping_j"] = e.damping_j;
   out["friction_j"] = e.friction_j;
   out["broken_bond_j"] = e.broken_bond_j;
@@ -160,6 +192,22 @@ void DemService::report(wire::Message& reply) {
     out[prefix + "offset_x_m"] = body.offset_x;
     out[prefix + "offset_y_m"] = body.offset_y;
   }
+}
+
+void DemService::check_guards_into(double kinetic_energy_j, wire::StepReport& report) {
+  const GuardFinding f = check_guards(*setup_.system, setup_.guards, setup_.initial_energy_j,
+                                      kinetic_energy_j);
+  if (!f.tripped()) return;
+  stopped_by_ = f.guard;
+  wire::GuardTrip* g = report.mutable_guard();
+  g->set_guard(f.guard);
+  g->set_message(f.message);
+  g->set_time_s(setup_.system->time_s());
+  g->set_particle(f.particle);
+  g->set_x_m(f.x_m);
+  g->set_y_m(f.y_m);
+  g->set_value(f.value);
+  g->set_limit(f.limit);
 }
 
 void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {

@@ -30,6 +30,8 @@ class DemService final : public wire::ModuleHandler {
   void add_field(std::string_view field, wire::Message& reply);
   void report(wire::Message& reply);
   void report_rig(google::protobuf::Map<std::string, double>& out);
+  /// Runs the runtime guards; a trip goes into the report and stops further Advances.
+  void check_guards_into(double kinetic_energy_j, wire::StepReport& report);
   DemSystem& system();
 
   DemSetup setup_;
@@ -40,6 +42,7 @@ class DemService final : public wire::ModuleHandler {
   std::size_t breaks_sent_ = 0;               // breaks already handed out in frames
   double split_dt_s_ = 0.0;
   double width_strips0_m_ = 0.0;  // UCS: strip distance at the first report
+  std::string stopped_by_;        // the guard that stopped the time stepping, if any
 };
 
 }  // namespace rockcut::dem

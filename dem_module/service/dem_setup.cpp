@@ -234,6 +234,29 @@ DemSetup build_dem(const rockcut::Scene& scene) {
                                  dem.has_contact() || dem.has_bonds() ? ks : 0.0);
   setup.system = std::make_unique<DemSystem>(std::move(particles), settings, std::move(bonds),
                                              std::move(walls));
+
+  GuardLimits& guards = setup.guards;
+  guards.enabled = dem.guards().enabled();
+  guards.max_overlap_ratio = dem.guards().max_overlap_ratio();
+  guards.kinetic_energy_factor = dem.guards().kinetic_energy_factor();
+  guards.critical_time_s = setup.critical.dt_s;
+  if (dem.has_prescribed_motion()) {  // velocities are imposed: only the NaN guard means anything
+    guards.max_overlap_ratio = guards.kinetic_energy_factor = 0.0;
+  }
+  if (guards.enabled && guards.max_overlap_ratio > 0) {
+    const OverlapExtreme o = largest_overlap(*setup.system);
+    if (o.ratio > guards.max_overlap_ratio) {
+      const Particles& p = setup.system->particles();
+      throw std::invalid_argument(
+          "dem.guards.max_overlap_ratio: particle " + std::to_string(o.particle) + " at (" +
+          std::to_string(p.position[2 * o.particle]) + ", " +
+          std::to_string(p.position[2 * o.particle + 1]) + ") m starts overlapping by " +
+          std::to_string(o.ratio) + " of its radius, " + std::to_string(o.ratio / guards.max_overlap_ratio) +
+          " times the limit " + std::to_string(guards.max_overlap_ratio) +
+          ": relax the packing, or raise the limit if the overlaps are meant");
+    }
+  }
+  setup.initial_energy_j = setup.system->kinetic_energy() + setup.system->strain_energy();
   return setup;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/dem_system.hpp"
+#include "core/guards.hpp"
 #include "core/stability.hpp"
 #include "rockcut/scene.pb.h"
 
@@ -37,6 +38,8 @@ struct DemSetup {
   ToolPlacement tool;
   LoadingRig rig;
   CriticalStep critical;                      ///< none (dt 0) without springs
+  GuardLimits guards;
+  double initial_energy_j = 0.0;              ///< kinetic + strain at t = 0 [J/m] (energy budget)
   std::vector<std::uint32_t> initial_bonds;   ///< per particle, for damage
   std::string specimen_report;                ///< porosity, coordination, ... for the log
 };

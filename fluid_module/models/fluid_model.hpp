@@ -48,6 +48,9 @@ class FluidModel {
   /// Per-particle fields the model can output besides "force" (e.g. "pressure").
   virtual std::vector<std::string> provides() const = 0;
   virtual std::vector<StabilityLimit> limits() const = 0;
+  /// True for a prescribed force field that may supply energy (like gravity); false for a pore
+  /// fluid, which only stores and dissipates what the grains do on it (the DEM's energy guard).
+  virtual bool supplies_energy() const { return false; }
 
   virtual void initialise(const StaticData& data) = 0;
   /// Advances the model by dt [s] to time t [s] and writes the force on each particle

@@ -21,6 +21,7 @@ class PrescribedGradient final : public FluidModel {
   std::vector<std::string> needs_static() const override { return {"radius"}; }
   std::vector<std::string> provides() const override { return {}; }
   std::vector<StabilityLimit> limits() const override { return {}; }
+  bool supplies_energy() const override { return true; }  // a prescribed field, like gravity
 
   void initialise(const StaticData& data) override {
     radius_.assign(data.radius.begin(), data.radius.end());

@@ -1,6 +1,7 @@
 #include "service/fluid_service.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "models/registry.hpp"
@@ -55,6 +56,7 @@ void FluidService::init(const wire::Message& request, wire::Message& reply) {
   wire::InitReply* r = reply.envelope.mutable_init_reply();
   r->set_model(model_->name());
   r->set_particle_count(particle_count_);
+  r->set_supplies_energy(model_->supplies_energy());
   for (const auto& f : needs_) r->add_needs(f);
   r->add_provides(std::string(wire::field::kForce));
   for (const auto& f : model_->provides()) r->add_provides(f);
@@ -95,7 +97,28 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
     (*result->mutable_scalars())["probe_" + p.name() + "_pa"] = mean;
     (*result->mutable_scalars())["probe_" + p.name() + "_particles"] = static_cast<double>(count);
   }
+  guard_not_finite(s.time_s(), k.position, *result);
   reply.add_array(wire::field::kForce, force_, 2);
+}
+
+void FluidService::guard_not_finite(double time_s, std::span<const double> position,
+                                    wire::FluidResult& result) const {
+  // The runtime NaN guard (DESIGN section 5) for any model: the forces it hands the DEM.
+  const auto bad = std::find_if(force_.begin(), force_.end(), [](double f) { return !std::isfinite(f); });
+  if (bad == force_.end()) return;
+  const std::int64_t i = (bad - force_.begin()) / 2;
+  wire::GuardTrip* g = result.mutable_guard();
+  g->set_guard("nan");
+  g->set_time_s(time_s);
+  g->set_particle(i);
+  std::string where;
+  if (position.size() >= static_cast<std::size_t>(2 * i + 2)) {
+    g->set_x_m(position[2 * i]);
+    g->set_y_m(position[2 * i + 1]);
+    where = " at (" + std::to_string(position[2 * i]) + ", " + std::to_string(position[2 * i + 1]) + ") m";
+  }
+  g->set_message("the " + model_->name() + " fluid force on particle " + std::to_string(i) + where +
+                 " is not finite at t = " + std::to_string(time_s) + " s");
 }
 
 void FluidService::frame(const wire::FrameRequest& request, wire::Message& reply) {

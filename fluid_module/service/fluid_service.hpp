@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ class FluidService final : public wire::ModuleHandler {
  private:
   void init(const wire::Message& request, wire::Message& reply);
   void step(const wire::Message& request, wire::Message& reply);
+  /// Sets result.guard when a force is NaN or Inf (the state is no longer physical).
+  void guard_not_finite(double time_s, std::span<const double> position,
+                        wire::FluidResult& result) const;
   void frame(const wire::FrameRequest& request, wire::Message& reply);
   FluidModel& model();
 

@@ -303,7 +303,8 @@ int RunSession::run() {
     if (fluid_) {
       for (const auto& l : fluid_->init.limits()) {
         fluid_limits.push_back(
-            {fluid_->hello.module_name(), l.name(), l.dt_max_s(), l.detail(), l.lag_only()});
+            {fluid_->hello.module_name(), l.name(), l.dt_max_s(), l.detail(), l.lag_only(),
+             l.remedy()});
       }
     }
     plan_ = plan_time(scene_, dem_limits, fluid_limits, coupled_);

@@ -81,7 +81,8 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
       if (n < 1) {
         throw PlanError("the fluid limit " + l.name + " (" + fmt(l.dt_max_s) +
                         " s) is below the DEM step " + fmt(plan.dt_s) + " s by " +
-                        fmt(plan.dt_s / l.dt_max_s) + "x; lower time.dt_s");
+                        fmt(plan.dt_s / l.dt_max_s) + "x; lower time.dt_s" +
+                        (l.remedy.empty() ? "" : ", or " + l.remedy));
       }
       if (n < max_n) {
         max_n = n;

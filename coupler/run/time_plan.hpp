@@ -18,6 +18,7 @@ struct Limit {
   double dt_max_s = 0.0;
   std::string detail;
   bool lag_only = false;  ///< bounds only N > 1 (a lagged coupling); N = 1 is always allowed
+  std::string remedy;     ///< what else to change when it refuses a scene
 };
 
 /// The scene asks for more than a limit allows. what() names the limit, by how much it is exceeded

@@ -247,13 +247,15 @@ DemSetup build_dem(const rockcut::Scene& scene) {
     const OverlapExtreme o = largest_overlap(*setup.system);
     if (o.ratio > guards.max_overlap_ratio) {
       const Particles& p = setup.system->particles();
-      throw std::invalid_argument(
-          "dem.guards.max_overlap_ratio: particle " + std::to_string(o.particle) + " at (" +
-          std::to_string(p.position[2 * o.particle]) + ", " +
-          std::to_string(p.position[2 * o.particle + 1]) + ") m starts overlapping by " +
-          std::to_string(o.ratio) + " of its radius, " + std::to_string(o.ratio / guards.max_overlap_ratio) +
-          " times the limit " + std::to_string(guards.max_overlap_ratio) +
-          ": relax the packing, or raise the limit if the overlaps are meant");
+      char message[400];
+      std::snprintf(message, sizeof message,
+                    "dem.guards.max_overlap_ratio: particle %lld at (%.6g, %.6g) m starts "
+                    "overlapping a neighbour or a wall by %.3g of its radius, %.3g times the limit "
+                    "%.3g: relax the packing, or raise the limit if the overlaps are meant",
+                    static_cast<long long>(o.particle), p.position[2 * o.particle],
+                    p.position[2 * o.particle + 1], o.ratio, o.ratio / guards.max_overlap_ratio,
+                    guards.max_overlap_ratio);
+      throw std::invalid_argument(message);
     }
   }
   setup.initial_energy_j = setup.system->kinetic_energy() + setup.system->strain_energy();

@@ -16,6 +16,7 @@ struct StabilityLimit {
   double dt_max_s = 0.0;
   std::string detail;
   bool lag_only = false;  ///< bounds only a lagged coupling (N > 1); N = 1 is always allowed
+  std::string remedy;     ///< what to change when it refuses a scene (besides a smaller step)
 };
 
 /// Per-step kinematics; only the fields the model listed in needs() are filled.

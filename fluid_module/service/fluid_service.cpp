@@ -66,6 +66,7 @@ void FluidService::init(const wire::Message& request, wire::Message& reply) {
     w->set_dt_max_s(l.dt_max_s);
     w->set_detail(l.detail);
     w->set_lag_only(l.lag_only);
+    w->set_remedy(l.remedy);
   }
 }
 

@@ -15,7 +15,8 @@ ExplicitModel::ExplicitModel(const SpParams& params)
 StabilityLimit ExplicitModel::diffusion_limit() const {
   return {"explicit_diffusion", dt_max_s_,
           "C h^2 / D with C = " + fmt(kExplicitStabilityC) + ", h = " + fmt(params_.h_m) +
-              " m, D = M kappa / mu = " + fmt(diffusivity_m2_s_) + " m^2/s"};
+              " m, D = M kappa / mu = " + fmt(diffusivity_m2_s_) + " m^2/s",
+          false, "use fluid.model: \"implicit\", which has no diffusion limit"};
 }
 
 void ExplicitModel::advance(double dt_s) {

@@ -135,7 +135,7 @@ TEST(GuardsRun, InitialOverlapBeyondTheLimitIsRefused) {
       "}\n");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("dem.guards.max_overlap_ratio"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("starts overlapping by 0.5"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("starts overlapping a neighbour or a wall by 0.5"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(r.out / "summary.json"));
 }
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "run/expected_error.hpp"
 #include "run/signals.hpp"
 #include "run/verification.hpp"
 #include "wire/protocol.hpp"
@@ -287,6 +288,7 @@ void RunSession::print_startup() const {
                  nodes_.empty() ? "" : (", " + std::to_string(nodes_.size()) +
                                         " pressure nodes moving with the tool").c_str());
   }
+  if (accuracy_line_) std::fprintf(stderr, "%s\n", accuracy_line_->c_str());
   std::fprintf(stderr, "output     %s\n", options_.out_dir.c_str());
 }
 
@@ -308,6 +310,14 @@ int RunSession::run() {
       }
     }
     plan_ = plan_time(scene_, dem_limits, fluid_limits, coupled_);
+    double dem_limit_s = 0.0, stiffness_limit_s = 0.0;
+    for (const Limit& l : dem_limits) {
+      if (dem_limit_s == 0.0 || l.dt_max_s < dem_limit_s) dem_limit_s = l.dt_max_s;
+    }
+    for (const Limit& l : fluid_limits) {
+      if (l.name == "pore_fluid_stiffness") stiffness_limit_s = l.dt_max_s;
+    }
+    accuracy_line_ = expected_error_line(scene_, plan_, dem_limit_s, stiffness_limit_s);
   } catch (const PlanError& e) {
     std::cerr << loaded_.path.string() << ": refused: " << e.what() << "\n";
     return kExitBadInput;

@@ -106,6 +106,7 @@ class RunSession {
   std::unique_ptr<CuttingSummary> cutting_;
   std::vector<PressureNodeBox> nodes_;      // sent as probes when the fluid has a pressure
   std::optional<PecletNumber> peclet_;
+  std::optional<std::string> accuracy_line_;  // expected error from docs/accuracy.md, if covered
   // Cumulative handling time of each module (Envelope.busy_s) at the start of the loop and now.
   double dem_busy0_s_ = 0.0, dem_busy_s_ = 0.0, fluid_busy0_s_ = 0.0, fluid_busy_s_ = 0.0;
   std::unique_ptr<CalibrationSummary> calibration_;

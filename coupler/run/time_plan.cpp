@@ -101,15 +101,21 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
       }
     } else {
       // Without a fluid limit the paper's scheme (N = 1) is kept.
+      // Stable up to max_n; accurate (docs/accuracy.md) at a fraction of it.
       plan.coupling_interval =
-          binding && !dt_from_fluid ? static_cast<unsigned>(std::min(max_n, 1e6)) : 1;
+          binding && !dt_from_fluid
+              ? static_cast<unsigned>(std::max(
+                    1.0, std::floor(scene.coupling().interval_fraction() * std::min(max_n, 1e6))))
+              : 1;
     }
     plan.report.push_back(
         "chosen coupling interval N = " + std::to_string(plan.coupling_interval) +
         ", fluid step " + fmt(plan.coupling_interval * plan.dt_s) + " s" +
         (scene.coupling().has_interval() ? " (set in the scene)"
          : dt_from_fluid                 ? " (fluid-only scene: one DEM step per fluid step)"
-         : binding                       ? " (binding: " + binding->name + ")"
+         : binding ? " (binding: " + binding->name + ", which allows N <= " + fmt(max_n) +
+                         "; coupling.interval_fraction " +
+                         fmt(scene.coupling().interval_fraction()) + " of it, docs/accuracy.md)"
                                          : " (no fluid limit: the paper's N = 1)"));
   }
   plan.total_steps = static_cast<std::uint64_t>(std::ceil(time.end_time_s() / plan.dt_s - 1e-9));

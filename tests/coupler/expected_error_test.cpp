@@ -1,0 +1,46 @@
+// The expected error printed at start-up: interpolation in the work-precision study's ladders
+// (docs/accuracy.md) and the refusal to extrapolate beyond the coarsest setting studied.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "run/expected_error.hpp"
+
+namespace rockcut::coupler {
+namespace {
+
+TEST(ExpectedError, FinestSettingsOfEveryLadderHaveNoErrorByDefinition) {
+  std::string detail;
+  const auto e = expected_force_error({0.05, 0.108, 1.67, 0.5}, &detail);
+  ASSERT_TRUE(e.has_value()) << detail;
+  EXPECT_EQ(*e, 0.0);
+  // Finer than the study: below what it resolves, so the finest's 0 again (paper-scale discs).
+  EXPECT_EQ(*expected_force_error({0.01, 0.05, 1.0, 0.25}, nullptr), 0.0);
+}
+
+TEST(ExpectedError, CoarserThanTheStudyIsNotCovered) {
+  std::string detail;
+  EXPECT_FALSE(expected_force_error({0.8, 1.0, 2.5, 1.0}, &detail).has_value());
+  EXPECT_NE(detail.find("dt_safety = 0.8"), std::string::npos) << detail;
+  EXPECT_FALSE(expected_force_error({0.2, 1.0, 2.5, 2.0}, &detail).has_value());
+  EXPECT_NE(detail.find("disc size"), std::string::npos) << detail;
+}
+
+TEST(ExpectedError, InterpolatesBetweenStudiedSettingsAndCombinesByRootSumSquare) {
+  // One ladder at a time away from its finest: the result is that ladder's own error.
+  const double at_02 = *expected_force_error({0.2, 0.108, 1.67, 0.5}, nullptr);
+  const double at_01 = *expected_force_error({0.1, 0.108, 1.67, 0.5}, nullptr);
+  const double between = *expected_force_error({std::sqrt(0.02), 0.108, 1.67, 0.5}, nullptr);
+  EXPECT_NEAR(between, 0.5 * (at_02 + at_01), 1e-12);  // linear in log(dt_safety), midpoint
+  const double n_only = *expected_force_error({0.05, 1.0, 1.67, 0.5}, nullptr);
+  const double both = *expected_force_error({0.2, 1.0, 1.67, 0.5}, nullptr);
+  EXPECT_NEAR(both, std::hypot(at_02, n_only), 1e-12);
+  // The study's values at its settings (docs/accuracy.md): 36 % at dt_safety 0.2, 123 % at the
+  // largest stable N, 8 % at a quarter of it.
+  EXPECT_NEAR(at_02, 0.36, 1e-12);
+  EXPECT_NEAR(n_only, 1.23, 1e-12);
+  EXPECT_NEAR(*expected_force_error({0.05, 0.243, 1.67, 0.5}, nullptr), 0.08, 1e-12);
+}
+
+}  // namespace
+}  // namespace rockcut::coupler

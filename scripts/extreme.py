@@ -116,7 +116,6 @@ def main():
             print("%-30s dt_safety %s: %s" % (r["scene"], r["dt_safety"], r["outcome"]), flush=True)
             rows.append(r)
     rows.sort(key=lambda r: (r["scene"], r["dt_safety"] != "0.2"))
-    # A refused scene is refused whatever the step: its halved run adds nothing.
     text = table(rows)
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "extreme.md"), "w") as f:

@@ -18,9 +18,8 @@ struct CutSettings {
   double size_scale = 0.0;      ///< mean radius / that of saturated_reduced (1.2 mm)
 };
 
-/// One line for the start-up report: the expected relative error of the mean horizontal force and
-/// of the bond-break count for each setting, and their root sum square; or why the study does not
-/// cover the scene. Nothing for scenes that are not saturated cuts of a specimen.
+/// One line for the start-up report: the expected relative error of the mean horizontal force for
+/// each setting, and their root sum square; or why the study does not cover the scene. Nothing for scenes that are not saturated cuts of a specimen.
 std::optional<std::string> expected_error_line(const rockcut::Scene& scene, const TimePlan& plan,
                                                double dem_limit_s, double fluid_stiffness_limit_s);
 

@@ -100,8 +100,8 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
                         "x; use coupling.interval <= " + fmt(max_n));
       }
     } else {
-      // Without a fluid limit the paper's scheme (N = 1) is kept.
-      // Stable up to max_n; accurate (docs/accuracy.md) at a fraction of it.
+      // Stable up to max_n, accurate (docs/accuracy.md) at a fraction of it; without a fluid
+      // limit the paper's scheme (N = 1) is kept.
       plan.coupling_interval =
           binding && !dt_from_fluid
               ? static_cast<unsigned>(std::max(

@@ -50,6 +50,26 @@ std::int64_t first_not_finite(const Particles& p, const char*& what) {
 
 }  // namespace
 
+GuardLimits make_guard_limits(const Particles& p, double critical_time_s, double max_overlap_ratio,
+                              double kinetic_energy_factor) {
+  GuardLimits g;
+  g.max_overlap_ratio = max_overlap_ratio;
+  g.kinetic_energy_factor = kinetic_energy_factor;
+  g.critical_time_s = critical_time_s;
+  double mass = 0.0;
+  g.r_min_m = p.size() ? p.radius[0] : 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    mass += 1.0 / p.inv_mass[i];
+    g.r_min_m = std::min(g.r_min_m, p.radius[i]);
+  }
+  g.speed_limit_m_s = critical_time_s > 0 && max_overlap_ratio > 0
+                          ? max_overlap_ratio * g.r_min_m / critical_time_s
+                          : 0.0;
+  const double floor_speed = g.speed_limit_m_s > 0 ? 1e-3 * g.speed_limit_m_s : 1e-3;
+  g.kinetic_energy_floor_j = 0.5 * mass * floor_speed * floor_speed;
+  return g;
+}
+
 OverlapExtreme largest_overlap(const DemSystem& system) {
   const Particles& p = system.particles();
   OverlapExtreme out;
@@ -106,19 +126,7 @@ GuardFinding check_guards(const DemSystem& system, const GuardLimits& limits,
   if (limits.kinetic_energy_factor > 0) {
     const double supplied =
         energy_supplied_j(system, initial_energy_j, limits.external_force_supplies_energy);
-    // A floor below which kinetic energy is noise: the whole mass at 1e-3 of the speed limit (or
-    // at 1 mm/s without springs), so that a run given no energy yet cannot trip on round-off.
-    double mass = 0.0, r_min = 1e300;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      mass += 1.0 / p.inv_mass[i];
-      r_min = std::min(r_min, p.radius[i]);
-    }
-    const double speed_limit = limits.critical_time_s > 0 && limits.max_overlap_ratio > 0
-                                   ? limits.max_overlap_ratio * r_min / limits.critical_time_s
-                                   : 0.0;
-    const double floor_speed = speed_limit > 0 ? 1e-3 * speed_limit : 1e-3;
-    const double floor = 0.5 * mass * floor_speed * floor_speed;
-    const double allowed = limits.kinetic_energy_factor * supplied + floor;
+    const double allowed = limits.kinetic_energy_factor * supplied + limits.kinetic_energy_floor_j;
     // The fluid is no energy source: it stores what the grains do on it and dissipates it by
     // flow, so its net work on the grains cannot exceed what the run was given either. A lagged
     // coupling that pumps energy shows here first (its work is damped out of sight).
@@ -145,7 +153,7 @@ GuardFinding check_guards(const DemSystem& system, const GuardLimits& limits,
           std::sqrt(v2_max));
       return f;
     }
-    if (speed_limit > 0) {
+    if (const double speed_limit = limits.speed_limit_m_s; speed_limit > 0) {
       for (std::size_t i = 0; i < p.size(); ++i) {
         const double v = std::hypot(p.velocity[2 * i], p.velocity[2 * i + 1]);
         if (v <= speed_limit) continue;
@@ -156,7 +164,7 @@ GuardFinding check_guards(const DemSystem& system, const GuardLimits& limits,
             "m/s, above %.4g m/s (= max_overlap_ratio %.3g x R_min %.4g m / t_c %.4g s: a "
             "collision at this speed overlaps by more than the overlap limit)",
             t, static_cast<long long>(i), f.x_m, f.y_m, v, speed_limit, limits.max_overlap_ratio,
-            r_min, limits.critical_time_s);
+            limits.r_min_m, limits.critical_time_s);
         return f;
       }
     }

@@ -29,7 +29,17 @@ struct GuardLimits {
   double critical_time_s = 0.0;         ///< smallest sqrt(m / k); 0: no speed guard
   /// The external force is a prescribed field (counted as given, like gravity), not a pore fluid.
   bool external_force_supplies_energy = false;
+  // Derived once from the particles (make_guard_limits): fixed for a run.
+  double r_min_m = 0.0;                 ///< smallest radius
+  double speed_limit_m_s = 0.0;         ///< max_overlap_ratio r_min / t_c; 0: no speed guard
+  /// Kinetic energy below which the energy guard never trips: the whole mass at 1e-3 of the speed
+  /// limit (1 mm/s without one), so that a run given no energy yet cannot trip on round-off.
+  double kinetic_energy_floor_j = 0.0;
 };
+
+/// The limits of a run of these particles, with the derived values filled in.
+GuardLimits make_guard_limits(const Particles& p, double critical_time_s, double max_overlap_ratio,
+                              double kinetic_energy_factor);
 
 struct GuardFinding {
   std::string guard;     ///< empty: all guards passed

@@ -235,14 +235,13 @@ DemSetup build_dem(const rockcut::Scene& scene) {
   setup.system = std::make_unique<DemSystem>(std::move(particles), settings, std::move(bonds),
                                              std::move(walls));
 
+  // With prescribed motion the velocities are imposed: only the NaN guard means anything.
+  const bool dynamic = !dem.has_prescribed_motion();
   GuardLimits& guards = setup.guards;
+  guards = make_guard_limits(setup.system->particles(), setup.critical.dt_s,
+                             dynamic ? dem.guards().max_overlap_ratio() : 0.0,
+                             dynamic ? dem.guards().kinetic_energy_factor() : 0.0);
   guards.enabled = dem.guards().enabled();
-  guards.max_overlap_ratio = dem.guards().max_overlap_ratio();
-  guards.kinetic_energy_factor = dem.guards().kinetic_energy_factor();
-  guards.critical_time_s = setup.critical.dt_s;
-  if (dem.has_prescribed_motion()) {  // velocities are imposed: only the NaN guard means anything
-    guards.max_overlap_ratio = guards.kinetic_energy_factor = 0.0;
-  }
   if (guards.enabled && guards.max_overlap_ratio > 0) {
     const OverlapExtreme o = largest_overlap(*setup.system);
     if (o.ratio > guards.max_overlap_ratio) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "models/registry.hpp"
+#include "sp/format.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
 
@@ -116,10 +117,10 @@ void FluidService::guard_not_finite(double time_s, std::span<const double> posit
   if (position.size() >= static_cast<std::size_t>(2 * i + 2)) {
     g->set_x_m(position[2 * i]);
     g->set_y_m(position[2 * i + 1]);
-    where = " at (" + std::to_string(position[2 * i]) + ", " + std::to_string(position[2 * i + 1]) + ") m";
+    where = " at (" + sp::fmt(position[2 * i]) + ", " + sp::fmt(position[2 * i + 1]) + ") m";
   }
   g->set_message("the " + model_->name() + " fluid force on particle " + std::to_string(i) + where +
-                 " is not finite at t = " + std::to_string(time_s) + " s");
+                 " is not finite at t = " + sp::fmt(time_s) + " s");
 }
 
 void FluidService::frame(const wire::FrameRequest& request, wire::Message& reply) {

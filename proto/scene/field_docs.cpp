@@ -105,7 +105,7 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
     {"rockcut.Guards.kinetic_energy_factor",
      "Runaway kinetic energy: neither the kinetic energy nor the net work of the pore fluid on the grains may exceed this factor times the energy the run was given (initial kinetic and strain energy plus the work of walls, tool and gravity; the fluid only stores and dissipates what the grains do on it). Energy conservation allows 1. 0: no energy guard."},
     {"rockcut.Guards.max_overlap_ratio",
-     "Largest overlap of two discs (bonded or not) or of a disc and a wall, as a ratio of the smaller radius. The linear contact law and the neighbour search assume overlaps of a few per cent; the saturated cut at 2000 m reaches 0.05. A collision faster than this ratio x R_min / sqrt(m/k) trips the kinetic-energy guard. 0: no overlap or speed guard."},
+     "Largest overlap of two discs (bonded or not) or of a disc and a wall, as a ratio of the smaller radius. The linear contact law and the neighbour search assume overlaps of a few per cent. A collision faster than this ratio x R_min / sqrt(m/k) trips the kinetic-energy guard. 0: no overlap or speed guard."},
     {"rockcut.ImplicitSolver.max_diffusion_number",
      "Accuracy limit reported to the coupler instead of a stability limit: the fluid step is at most this many times h^2 / D (D = M kappa / mu). The default 0.2, 4 times the explicit limit, keeps the time error of a pulse two smoothing lengths wide near the spatial error at h = 2.5 spacings; 1 lets a disturbance spread one smoothing length per step and costs 4x the error (docs/fluid_verification.md)."},
     {"rockcut.ImplicitSolver.max_iterations",

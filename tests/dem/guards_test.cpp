@@ -14,9 +14,7 @@ namespace rockcut::dem {
 namespace {
 
 GuardLimits limits_for(const Particles& p, double kn, double ks) {
-  GuardLimits g;
-  g.critical_time_s = critical_step(p, kn, ks).dt_s;
-  return g;
+  return make_guard_limits(p, critical_step(p, kn, ks).dt_s, 0.25, 1.5);
 }
 
 TEST(Guards, NanVelocityIsNamedWithItsParticle) {

@@ -11,6 +11,7 @@ namespace rockcut::coupler {
 void RunSession::loop() {
   next_series_step_ = 0;
   next_frame_index_ = 0;
+  forces_held_ = false;
   dem_busy0_s_ = dem_busy_s_;
   fluid_busy0_s_ = fluid_busy_s_;
 
@@ -58,14 +59,23 @@ std::chrono::milliseconds RunSession::allowance(std::uint64_t steps) const {
 }
 
 void RunSession::exchange(unsigned steps, bool initial) {
-  // 1. DEM: N-1 full steps, then half kick and drift; answers x^{n+N}, v^{n+N-1/2}.
+  // 1. DEM: (complete the last step with the held fluid force,) N-1 full steps, then half kick and
+  //    drift; answers x^{n+N}, v^{n+N-1/2}.
   request_.clear();
   wire::Advance* advance = request_.envelope.mutable_advance();
   advance->set_steps(steps);
   advance->set_dt_s(plan_.dt_s);
   advance->set_split_last(true);
+  if (forces_held_) {
+    advance->set_apply_forces_first(true);
+    request_.take_arrays(fluid_reply_);
+    forces_held_ = false;
+  }
   dem_.link->set_timeout(allowance(steps));
   dem_.link->request(request_, reply_);
+  if (reply_.envelope.has_step_report()) {
+    record_step_report(reply_.envelope.step_report());  // a guard tripped on the completed step
+  }
   if (!reply_.envelope.has_kinematics()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered Advance without Kinematics");
   }
@@ -95,8 +105,16 @@ void RunSession::exchange(unsigned steps, bool initial) {
     throw GuardStop{fluid_->link->label(), fluid_reply_.envelope.fluid_result().guard()};
   }
   bytes_exchanged_ += fluid_reply_.payload_bytes();
+  ++exchanges_;
 
-  // 3. DEM: total force at x^{n+N}, second half kick.
+  // 3. DEM: total force at x^{n+N}, second half kick. When nothing is recorded at this step, the
+  //    force rides on the next Advance instead: two round trips per exchange instead of three.
+  if (!initial && !record_due(kinematics.step(), t)) {
+    forces_held_ = true;
+    step_ = kinematics.step();
+    time_s_ = t;
+    return;
+  }
   request_.clear();
   request_.envelope.mutable_apply_forces();
   request_.take_arrays(fluid_reply_);
@@ -105,7 +123,6 @@ void RunSession::exchange(unsigned steps, bool initial) {
     throw wire::ModuleFailure(dem_.link->label(), "answered ApplyForces without StepReport");
   }
   dem_busy_s_ = reply_.envelope.busy_s();
-  ++exchanges_;
   scalars_.clear();
   for (const auto& [name, value] : fluid_reply_.envelope.fluid_result().scalars()) {
     scalars_.emplace_back("fluid_" + name, value);
@@ -139,8 +156,20 @@ void RunSession::record_step_report(const wire::StepReport& report) {
   if (report.has_guard()) throw GuardStop{dem_.link->label(), report.guard()};
 }
 
+bool RunSession::series_due(std::uint64_t step) const { return step >= next_series_step_; }
+
+bool RunSession::frame_due(double time_s) const {
+  const double interval = scene_.output().frame_interval_s();
+  return next_frame_index_ == 0 ||
+         (interval > 0 && time_s >= next_frame_index_ * interval - 0.5 * plan_.dt_s);
+}
+
+bool RunSession::record_due(std::uint64_t step, double time_s) const {
+  return step >= plan_.total_steps || series_due(step) || frame_due(time_s);
+}
+
 void RunSession::maybe_record(bool last) {
-  if (step_ >= next_series_step_ || last) {
+  if (series_due(step_) || last) {
     run_file_->append_timeseries(time_s_, step_, scalars_);
     cutting_->observe(scalars_);
     calibration_->observe(scalars_);
@@ -148,9 +177,7 @@ void RunSession::maybe_record(bool last) {
     next_series_step_ = (step_ / every + 1) * every;
   }
   const double interval = scene_.output().frame_interval_s();
-  bool frame_due = last || next_frame_index_ == 0;
-  if (interval > 0 && time_s_ >= next_frame_index_ * interval - 0.5 * plan_.dt_s) frame_due = true;
-  if (frame_due) {
+  if (last || frame_due(time_s_)) {
     write_frame();
     if (interval > 0) {
       next_frame_index_ = static_cast<std::uint64_t>(std::floor(time_s_ / interval + 0.5)) + 1;

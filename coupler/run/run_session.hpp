@@ -82,6 +82,11 @@ class RunSession {
   // run_loop.cpp: the clock
   void loop();
   void exchange(unsigned steps, bool initial);
+  /// Whether a time-series row or a frame is due at this step and time (or it is the last step):
+  /// only then must an exchange complete its step before the next Advance.
+  bool record_due(std::uint64_t step, double time_s) const;
+  bool series_due(std::uint64_t step) const;
+  bool frame_due(double time_s) const;
   void advance_dry(unsigned steps);
   /// How long the DEM may take to answer an Advance of `steps` steps.
   std::chrono::milliseconds allowance(std::uint64_t steps) const;
@@ -120,6 +125,7 @@ class RunSession {
   std::uint64_t next_series_step_ = 0;
   std::uint64_t next_frame_index_ = 0;
   std::uint64_t exchanges_ = 0;
+  bool forces_held_ = false;  // fluid_reply_ holds forces for the next Advance to apply first
   std::uint64_t bytes_exchanged_ = 0;
   std::vector<std::pair<std::string, double>> scalars_;
   std::vector<double> initial_position_, last_position_;

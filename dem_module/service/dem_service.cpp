@@ -36,7 +36,7 @@ void DemService::handle(const wire::Message& request, wire::Message& reply) {
   const wire::Envelope& e = request.envelope;
   switch (e.body_case()) {
     case wire::Envelope::kInit: return init(e.init(), reply);
-    case wire::Envelope::kAdvance: return advance(e.advance(), reply);
+    case wire::Envelope::kAdvance: return advance(request, reply);
     case wire::Envelope::kApplyForces: return apply_forces(request, reply);
     case wire::Envelope::kSubscribe: return subscribe(e.subscribe(), reply);
     case wire::Envelope::kFrameRequest: return frame(e.frame_request(), reply);
@@ -84,11 +84,23 @@ void DemService::after_reply() {
   }
 }
 
-void DemService::advance(const wire::Advance& advance, wire::Message& reply) {
+void DemService::advance(const wire::Message& request, wire::Message& reply) {
+  const wire::Advance& advance = request.envelope.advance();
   DemSystem& s = system();
   if (!stopped_by_.empty()) {
     throw std::runtime_error("dem_module: stopped by the " + stopped_by_ +
                              " guard; only frames can be asked for");
+  }
+  if (advance.apply_forces_first()) {
+    // The held ApplyForces of the last exchange (no output was due at its step). The guards run
+    // on the completed step at the same cadence as inside a long Advance.
+    hold_forces(request);
+    if (s.step_count() >= guard_checked_step_ + kGuardEverySteps) {
+      guard_checked_step_ = s.step_count();
+      if (check_guards(s, setup_.guards, setup_.initial_energy_j, s.kinetic_energy()).tripped()) {
+        return report(reply);
+      }
+    }
   }
   const double dt = advance.dt_s();
   if (advance.steps() > 0 && !(dt > 0.0)) throw std::invalid_argument("Advance with dt_s <= 0");
@@ -122,7 +134,7 @@ void DemService::advance(const wire::Advance& advance, wire::Message& reply) {
   }
 }
 
-void DemService::apply_forces(const wire::Message& request, wire::Message& reply) {
+void DemService::hold_forces(const wire::Message& request) {
   DemSystem& s = system();
   const auto force = request.array(wire::field::kForce, 2);
   if (s.in_split_step()) {
@@ -130,6 +142,10 @@ void DemService::apply_forces(const wire::Message& request, wire::Message& reply
   } else {
     s.set_external_force(force);  // t = 0 exchange: a^0 includes the fluid force
   }
+}
+
+void DemService::apply_forces(const wire::Message& request, wire::Message& reply) {
+  hold_forces(request);
   report(reply);
 }
 
@@ -142,6 +158,7 @@ void DemService::report(wire::Message& reply) {
   const double kinetic = s.kinetic_energy();
   out["kinetic_energy_j"] = kinetic;
   check_guards_into(kinetic, *r);
+  guard_checked_step_ = s.step_count();
   if (!s.bonds().size() && s.contacts().size() == 0 && s.walls().empty()) return;
 
   const EnergyLedger& e = s.ledger();

@@ -24,8 +24,10 @@ class DemService final : public wire::ModuleHandler {
  private:
   void init(const wire::Init& init, wire::Message& reply);
   void subscribe(const wire::Subscribe& subscribe, wire::Message& reply);
-  void advance(const wire::Advance& advance, wire::Message& reply);
+  void advance(const wire::Message& request, wire::Message& reply);
   void apply_forces(const wire::Message& request, wire::Message& reply);
+  /// Completes the pending split step with the request's "force" array (or, at t = 0, sets it).
+  void hold_forces(const wire::Message& request);
   void frame(const wire::FrameRequest& request, wire::Message& reply);
   void add_field(std::string_view field, wire::Message& reply);
   void report(wire::Message& reply);
@@ -41,6 +43,7 @@ class DemService final : public wire::ModuleHandler {
   std::vector<std::uint32_t> bond_count_;
   std::size_t breaks_sent_ = 0;               // breaks already handed out in frames
   double split_dt_s_ = 0.0;
+  std::uint64_t guard_checked_step_ = 0;  // last step the guards ran on in a merged exchange
   double width_strips0_m_ = 0.0;  // UCS: strip distance at the first report
   std::string stopped_by_;        // the guard that stopped the time stepping, if any
 };

@@ -86,7 +86,10 @@ TEST(Cutting, SmallDryCutWritesForcesBreaksAndDamage) {
   }
   ASSERT_TRUE(code.has_value()) << "the small cut did not finish within 60 s";
   ASSERT_EQ(*code, 0) << read_file(s.err_file);
-  for (const std::string& name : seen) EXPECT_EQ(name, "dem_module");
+  // A child caught between fork and exec still carries the coupler's name: what matters is that
+  // no fluid process ever appears and the DEM does.
+  for (const std::string& name : seen) EXPECT_NE(name, "fluid_module");
+  EXPECT_NE(std::find(seen.begin(), seen.end(), "dem_module"), seen.end());
   EXPECT_NE(read_file(s.err_file).find("no fluid process"), std::string::npos);
 
   const fs::path out = dir / "out";

@@ -124,7 +124,7 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     const double vt = (p.velocity[2 * i] - b.velocity_x) * tx +
                       (p.velocity[2 * i + 1] - b.velocity_y) * ty - p.angular_velocity[i] * r;
     double fs = shear_force_[k] - ks * vt * dt;
-    const double limit = mu * fn;
+    const double limit = (b.friction >= 0.0 ? b.friction : mu) * fn;
     if (std::abs(fs) > limit) {
       friction_j += limit * (std::abs(fs) - limit) / ks;
       fs = std::copysign(limit, fs);

@@ -24,6 +24,9 @@ struct WallBody {
   double offset_x = 0.0, offset_y = 0.0;      ///< displacement since t = 0 [m]
   double force_x = 0.0, force_y = 0.0;        ///< force of the discs on the body, last step [N/m]
   double previous_force_x = 0.0, previous_force_y = 0.0;  ///< the step before (work trapezoid)
+  /// Friction coefficient of this body's contacts; negative: the contact law's (lubricated
+  /// platens of a loading test are frictionless while the grains keep theirs).
+  double friction = -1.0;
 };
 
 class WallSet {
@@ -33,6 +36,8 @@ class WallSet {
                          bool closed, double velocity_x, double velocity_y);
   bool empty() const { return segments_.empty(); }
   const std::vector<WallBody>& bodies() const { return bodies_; }
+  /// Gives body `body` its own friction coefficient (>= 0) instead of the contact law's.
+  void set_friction(std::uint32_t body, double friction) { bodies_.at(body).friction = friction; }
   const std::vector<Segment>& segments() const { return segments_; }
 
   /// Moves every body by its velocity over dt.

@@ -148,6 +148,10 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
   const double w = right - left, v = test.platen_speed_m_s();
   rig.top = walls.add_body("platen_top", {left - w, top, right + w, top}, false, 0.0, -v);
   rig.bottom = walls.add_body("platen_bottom", {left - w, bottom, right + w, bottom}, false, 0.0, v);
+  if (test.has_platen_friction()) {
+    walls.set_friction(rig.top, test.platen_friction());
+    walls.set_friction(rig.bottom, test.platen_friction());
+  }
   for (std::uint32_t i = 0; i < p.size(); ++i) {
     if (p.position[2 * i] - p.radius[i] < left + 2 * r_max) rig.left_strip.push_back(i);
     if (p.position[2 * i] + p.radius[i] > right - 2 * r_max) rig.right_strip.push_back(i);

@@ -122,6 +122,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Disc radius."},
     {"rockcut.Lattice.spacing_m",
      "Centre-to-centre distance."},
+    {"rockcut.LoadingTest.platen_friction",
+     "Friction coefficient between the platens and the discs. Unset: the grains' friction (dem.contact.friction). 0 models lubricated platens, which leave the specimen's ends free to expand sideways (no end confinement raising the UCS), as in the usual bonded-particle calibrations (docs/calibration.md)."},
     {"rockcut.LoadingTest.platen_speed_m_s",
      "Speed of each platen; the axial strain rate is 2 * speed / height."},
     {"rockcut.Output.frame_fields",

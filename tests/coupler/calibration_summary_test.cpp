@@ -47,6 +47,27 @@ TEST(CalibrationSummary, StrengthIsTheFirstFailurePeakNotALaterCompaction) {
   EXPECT_NEAR(number(out, "youngs_modulus_pa"), 1e10, 1e-3);
 }
 
+TEST(CalibrationSummary, SeatingSlipsBelowAFifthOfTheLargestLoadAreNotFailure) {
+  // A few end discs carry the first load and slip (0.5 -> 0.2 MPa, a 60 % drop) before the
+  // platens seat; the specimen then loads elastically to its failure at 10 MPa.
+  CalibrationSummary c(ucs_scene());
+  c.observe(sample(0.0, 0.0, 0.0));
+  c.observe(sample(1e-5, 0.5e6, 0.0));
+  c.observe(sample(2e-5, 0.2e6, 0.0));
+  for (int k = 1; k <= 20; ++k) c.observe(sample(2e-5 + 5e-5 * k, 0.2e6 + 0.49e6 * k, 0.0));
+  c.observe(sample(1.2e-3, 5e6, 0.0));  // failure
+  Summary out;
+  c.write(out);
+  EXPECT_NEAR(number(out, "ucs_pa"), 10e6, 1e-6);
+  EXPECT_NEAR(number(out, "youngs_modulus_pa"), 0.98e10, 1e-3);
+  // A drop at 25 % of the largest load counts: 2.5 MPa -> 1.5 MPa is failure there.
+  CalibrationSummary d(ucs_scene());
+  for (double load : {0.0, 2.5e6, 1.5e6, 10e6}) d.observe(sample(load / 1e10, load, 0.0));
+  Summary out2;
+  d.write(out2);
+  EXPECT_EQ(number(out2, "ucs_pa"), 2.5e6);
+}
+
 TEST(CalibrationSummary, BrazilianTensileStrength) {
   rockcut::Scene s;
   s.mutable_dem()->mutable_loading_test()->set_kind("brazilian");

@@ -1,5 +1,7 @@
 #include "service/fluid_service.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -39,6 +41,9 @@ void FluidService::handle(const wire::Message& request, wire::Message& reply) {
 }
 
 void FluidService::init(const wire::Message& request, wire::Message& reply) {
+  // Threads of this module's OpenMP loops (the calling thread's setting: in an inproc run the
+  // DEM thread keeps its own).
+  omp_set_num_threads(static_cast<int>(std::max(1u, request.envelope.init().scene().fluid().threads())));
   model_ = make_model(request.envelope.init().scene());
   needs_ = model_->needs();
   StaticData data;

@@ -32,6 +32,7 @@ void ExplicitModel::advance(double dt_s) {
   laplacian(list_, geo_, pressure_, work_);  // from p^n everywhere before any update
   const double p_min = params_.p_min_pa;
   const std::size_t n = pressure_.size();
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (boundary_[i] == Boundary::drained) {
       pressure_[i] = params_.p_hydro_pa;  // section 3.3: Dirichlet where the surface meets water

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+// Every loop here is a per-particle gather over the symmetric neighbour rows: OpenMP threads
+// (fluid.threads) split the particles and give the same bits for any thread count.
+
 namespace rockcut::fluid::sp {
 
 namespace {
@@ -19,6 +22,7 @@ void pair_kernels(const NeighbourList& list, const WendlandC2& kernel, const dou
   double* __restrict volume = g.volume.data();
   const WendlandC2 k = kernel;  // a local copy: its constants stay in registers
   const double w0 = k.w0();
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const double xi = x[2 * i], yi = x[2 * i + 1];
     double sum_w = w0;
@@ -42,6 +46,7 @@ void refine_volumes(const NeighbourList& list, double w0, Geometry& g) {
   const int* nb = list.neighbours().data();
   const double* v = g.volume.data();
   double* out = g.scratch.data();
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double s = v[i] * w0;
     for (int k = off[i]; k < off[i + 1]; ++k) s += v[nb[k]] * g.w[k];
@@ -63,6 +68,7 @@ void correction_matrices(const NeighbourList& list, std::span<const double> lucy
   const double* v = g.volume.data();
   const double* vl = lucy_volume.data();
   const double* x = g.position.data();
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double a = 0.0, b = 0.0, c = 0.0, divr = 0.0, nx = 0.0, ny = 0.0;
     const double xi = x[2 * i], yi = x[2 * i + 1];

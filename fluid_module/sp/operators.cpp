@@ -12,6 +12,7 @@ void gradient(const NeighbourList& list, const Geometry& geo, std::span<const do
   const double* v = geo.volume.data();
   const double* inv = geo.l_inverse.data();
   const double* x = geo.position.data();
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     // grad_i W_ij = F_ij (x_i - x_j) = -F_ij (dx, dy).
     double sx = 0.0, sy = 0.0;
@@ -36,6 +37,7 @@ void divergence(const NeighbourList& list, const Geometry& geo, std::span<const 
   const double* v = geo.volume.data();
   const double* inv = geo.l_inverse.data();
   const double* x = geo.position.data();
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     // G_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b; div = trace(G L^{-1}).
     double gxx = 0.0, gxy = 0.0, gyx = 0.0, gyy = 0.0;
@@ -64,23 +66,35 @@ void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
   const double* v = geo.volume.data();
   const double* inv = geo.l_inverse.data();
   const double* x = geo.position.data();
-  std::fill(force.begin(), force.end(), 0.0);
+  // The pair term A_i q_i B_ij, with B_ij = L_i^{-1} V_j grad_i W_ij and grad_i W_ij =
+  // -F_ij (x_j - x_i), pushes j and pulls i back. Gathered per particle over its (symmetric) row:
+  // F_i = sum_j (A_j q_j B_ji - A_i q_i B_ij), so threads write only their own particles.
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    const double aq = area[i] * q[i];
-    if (aq == 0.0) continue;
+    const double aqi = area[i] * q[i];
     const double xi = x[2 * i], yi = x[2 * i + 1];
-    const double* m = inv + 3 * i;
+    const double* mi = inv + 3 * i;
+    double fx = 0.0, fy = 0.0;
     for (int k = off[i]; k < off[i + 1]; ++k) {
       const int j = nb[k];
-      // A_i q_i B_ij, with grad_i W_ij = -F_ij (x_j - x_i); it pushes j and pulls i back.
-      const double s = -aq * v[j] * geo.f[k];
-      const double gx = s * (x[2 * j] - xi), gy = s * (x[2 * j + 1] - yi);
-      const double bx = m[0] * gx + m[1] * gy, by = m[1] * gx + m[2] * gy;
-      force[2 * j] += bx;
-      force[2 * j + 1] += by;
-      force[2 * i] -= bx;
-      force[2 * i + 1] -= by;
+      const double dx = x[2 * j] - xi, dy = x[2 * j + 1] - yi;  // x_j - x_i
+      // B_ij on i: -(A_i q_i) L_i^{-1} V_j (-F_ij) (x_j - x_i).
+      const double si = -aqi * v[j] * geo.f[k];
+      const double gxi = si * dx, gyi = si * dy;
+      fx -= mi[0] * gxi + mi[1] * gyi;
+      fy -= mi[1] * gxi + mi[2] * gyi;
+      // B_ji on i: (A_j q_j) L_j^{-1} V_i (-F_ji) (x_i - x_j), F_ji = F_ij.
+      const double aqj = area[j] * q[j];
+      if (aqj != 0.0) {
+        const double* mj = inv + 3 * j;
+        const double sj = aqj * v[i] * geo.f[k];  // -(-F) with (x_i - x_j) = -(dx, dy)
+        const double gxj = sj * dx, gyj = sj * dy;
+        fx += mj[0] * gxj + mj[1] * gyj;
+        fy += mj[1] * gxj + mj[2] * gyj;
+      }
     }
+    force[2 * i] = fx;
+    force[2 * i + 1] = fy;
   }
 }
 
@@ -90,6 +104,7 @@ void laplacian(const NeighbourList& list, const Geometry& geo, std::span<const d
   const int* off = list.offsets().data();
   const int* nb = list.neighbours().data();
   const double* v = geo.volume.data();
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double s = 0.0;
     const double ai = a[i];
@@ -109,6 +124,7 @@ void interpolate(const NeighbourList& list, const Geometry& geo, double w0,
   const int* nb = list.neighbours().data();
   const double* v = geo.volume.data();
   const double* x = geo.position.data();
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double num = v[i] * a[i] * w0, den = v[i] * w0, mx = 0.0, my = 0.0;
     const double xi = x[2 * i], yi = x[2 * i + 1];
@@ -129,6 +145,7 @@ void volume_sum(const NeighbourList& list, const Geometry& geo, double w0, std::
   const int* off = list.offsets().data();
   const int* nb = list.neighbours().data();
   const double* v = geo.volume.data();
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double s = v[i] * w0;
     for (int k = off[i]; k < off[i + 1]; ++k) s += v[nb[k]] * geo.w[k];

@@ -94,6 +94,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "How the volumetric strain increment of a fluid step is measured: `displacement` (the corrected divergence of the displacement since the last exchange: exact for any coupling interval N) or `velocity_half` (the paper: the corrected divergence of v^{n+N-1/2} (eq. 17) times the fluid step; exact only for N = 1)."},
     {"rockcut.Fluid.surface_div_r",
      "A particle whose Lucy div r (eq. 24) is at or below this value is a surface particle (section 3.3: 1.5; interior particles have div r close to 2)."},
+    {"rockcut.Fluid.threads",
+     "OpenMP threads for the SP operators. Each is a per-particle gather over symmetric neighbour rows, so any thread count gives the same bits. The fluid step runs while the DEM waits for its force (only its contact forces overlap), so the DEM's cores are free for it."},
     {"rockcut.Fluid.viscosity_pa_s",
      "Dynamic viscosity mu of the pore fluid (eq. 12)."},
     {"rockcut.Fluid.volume_iterations",

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <random>
 
+#include <omp.h>
+
 #include "fluid/sp_test_support.hpp"
 #include "sp/operators.hpp"
 
@@ -38,6 +40,32 @@ TEST(AdjointForce, IsTheNegativeTransposeOfTheDivergence) {
     scale += std::abs(area[i] * q[i] * div[i]);
   }
   EXPECT_NEAR(work, energy, 1e-12 * scale);
+}
+
+TEST(SpOperators, GiveTheSameBitsWithOneAndTwoThreads) {
+  // fluid.threads: every operator is a per-particle gather over the symmetric neighbour rows, so
+  // splitting the particles between threads changes no sum's order.
+  const Initialised s(random_packing(), 0.0015);
+  const std::size_t n = s.particles.size();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  std::vector<double> u(2 * n), q(n), area(n, 1e-7);
+  for (double& v : u) v = uni(rng);
+  for (double& v : q) v = 1e6 * uni(rng);
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    std::vector<double> out(2 * n + 2 * n + n + n);
+    std::span<double> all(out);
+    sp::adjoint_pressure_force(s.list(), s.geo(), area, q, all.subspan(0, 2 * n));
+    sp::gradient(s.list(), s.geo(), q, all.subspan(2 * n, 2 * n));
+    sp::divergence(s.list(), s.geo(), u, all.subspan(4 * n, n));
+    sp::laplacian(s.list(), s.geo(), q, all.subspan(5 * n, n));
+    omp_set_num_threads(1);
+    return out;
+  };
+  const std::vector<double> one = run(1), two = run(2);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t k = 0; k < one.size(); ++k) ASSERT_EQ(one[k], two[k]) << "value " << k;
 }
 
 TEST(AdjointForce, ConservesMomentumAndMatchesTheGradientInside) {

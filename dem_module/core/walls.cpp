@@ -145,16 +145,20 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
   }
 }
 
+double WallSet::pair_overlap(const Particles& p, std::size_t k) const {
+  const std::uint32_t i = particle_[k];
+  const Segment& seg = segments_[segment_[k]];
+  const WallBody& b = bodies_[seg.body];
+  const double px = p.position[2 * i], py = p.position[2 * i + 1];
+  const Closest c = closest_point(px, py, seg.ax + b.offset_x, seg.ay + b.offset_y,
+                                  seg.bx + b.offset_x, seg.by + b.offset_y);
+  return p.radius[i] - std::hypot(px - c.qx, py - c.qy);
+}
+
 double WallSet::strain_energy(const Particles& p, const ContactLaw& law) const {
   double e = 0.0;
   for (std::size_t k = 0; k < particle_.size(); ++k) {
-    const std::uint32_t i = particle_[k];
-    const Segment& seg = segments_[segment_[k]];
-    const WallBody& b = bodies_[seg.body];
-    const double px = p.position[2 * i], py = p.position[2 * i + 1], r = p.radius[i];
-    const Closest c = closest_point(px, py, seg.ax + b.offset_x, seg.ay + b.offset_y,
-                                    seg.bx + b.offset_x, seg.by + b.offset_y);
-    const double overlap = r - std::hypot(px - c.qx, py - c.qy);
+    const double overlap = pair_overlap(p, k);
     if (overlap <= 0) continue;
     e += 0.5 * law.normal_stiffness_n_m * overlap * overlap;
     if (law.shear_stiffness_n_m > 0) {
@@ -168,12 +172,7 @@ double WallSet::largest_overlap_ratio(const Particles& p, std::int64_t& particle
   double largest = 0.0;
   for (std::size_t k = 0; k < particle_.size(); ++k) {
     const std::uint32_t i = particle_[k];
-    const Segment& seg = segments_[segment_[k]];
-    const WallBody& b = bodies_[seg.body];
-    const double px = p.position[2 * i], py = p.position[2 * i + 1], r = p.radius[i];
-    const Closest c = closest_point(px, py, seg.ax + b.offset_x, seg.ay + b.offset_y,
-                                    seg.bx + b.offset_x, seg.by + b.offset_y);
-    const double ratio = (r - std::hypot(px - c.qx, py - c.qy)) / r;
+    const double ratio = pair_overlap(p, k) / p.radius[i];
     if (ratio > largest) {
       largest = ratio;
       particle = i;

@@ -56,6 +56,9 @@ class WallSet {
   double largest_overlap_ratio(const Particles& p, std::int64_t& particle) const;
 
  private:
+  /// Overlap of listed pair k (disc radius minus its distance to the moved segment) [m].
+  double pair_overlap(const Particles& p, std::size_t k) const;
+
   std::vector<WallBody> bodies_;
   std::vector<Segment> segments_;
   std::vector<double> offset_at_rebuild_;  // 2 per body

@@ -19,6 +19,8 @@ class CalibrationSummary {
   /// One time-series sample of the DEM's scalars.
   void observe(const std::vector<std::pair<std::string, double>>& scalars);
   void write(Summary& summary) const;
+  /// True once a Brazilian disc has split and the scene asks to stop there (stop_at_split).
+  bool test_over() const { return stop_at_split_ && split_; }
 
   struct Sample {
     double axial_strain, load, lateral_strain;  // load: stress [Pa] (ucs) or force [N/m]
@@ -33,6 +35,11 @@ class CalibrationSummary {
   bool active_ = false;
   bool ucs_ = true;
   double diameter_m_ = 0.0;
+  bool stop_at_split_ = false;
+  // Brazilian split detector, updated by observe().
+  bool split_ = false;
+  double largest_load_ = 0.0;
+  double split_load_ = 0.0, split_strain_ = 0.0;
   std::vector<Sample> samples_;
 };
 

@@ -2,6 +2,7 @@
 // plain multi-step advances for dry ones, and the recording of time series and frames.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "run/run_session.hpp"
 #include "wire/protocol.hpp"
@@ -23,7 +24,7 @@ void RunSession::loop() {
   maybe_record(true);
 
   const double frame_interval = scene_.output().frame_interval_s();
-  while (step_ < plan_.total_steps) {
+  while (step_ < plan_.total_steps && !calibration_->test_over()) {
     const std::uint64_t remaining = plan_.total_steps - step_;
     if (coupled_) {
       exchange(static_cast<unsigned>(std::min<std::uint64_t>(plan_.coupling_interval, remaining)),
@@ -41,6 +42,10 @@ void RunSession::loop() {
     }
     maybe_record(step_ >= plan_.total_steps);
     progress_->update(time_s_, step_);
+  }
+  if (calibration_->test_over()) {
+    std::printf("\nthe Brazilian disc split at t = %.6g s: test ended (loading_test.stop_at_split)\n",
+                time_s_);
   }
 }
 
@@ -173,6 +178,7 @@ void RunSession::maybe_record(bool last) {
     run_file_->append_timeseries(time_s_, step_, scalars_);
     cutting_->observe(scalars_);
     calibration_->observe(scalars_);
+    last = last || calibration_->test_over();  // the Brazilian disc has split: end the test here
     const std::uint64_t every = scene_.output().timeseries_every_steps();
     next_series_step_ = (step_ / every + 1) * every;
   }

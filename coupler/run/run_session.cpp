@@ -300,7 +300,7 @@ int RunSession::run() {
     check_frame_fields();
     std::vector<Limit> dem_limits, fluid_limits;
     for (const auto& l : dem_.init.limits()) {
-      dem_limits.push_back({dem_.hello.module_name(), l.name(), l.dt_max_s(), l.detail()});
+      dem_limits.push_back({dem_.hello.module_name(), l.name(), l.dt_max_s(), l.detail(), false, ""});
     }
     if (fluid_) {
       for (const auto& l : fluid_->init.limits()) {

@@ -236,8 +236,9 @@ void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
   const double force = 0.5 * (top.force_y - bottom.force_y);
   out["platen_force_n_per_m"] = force;
   out["axial_strain"] = (bottom.offset_y - top.offset_y) / rig.height0_m;
-  if (!rig.ucs) return;
-  out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa
+  if (rig.ucs) out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa
+  // UCS: the specimen's lateral strain. Brazilian: the opening of the disc across its horizontal
+  // diameter over D, which jumps when the disc splits (the split detector's input).
   auto mean_x = [&](const std::vector<std::uint32_t>& strip) {
     double sum = 0.0;
     for (std::uint32_t i : strip) sum += s.particles().position[2 * i];

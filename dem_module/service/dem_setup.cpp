@@ -129,8 +129,8 @@ ToolPlacement add_tool(const rockcut::Tool& t, const Particles& p, WallSet& wall
 }
 
 // Platens just touching the specimen's top and bottom, three specimen widths wide, closing at the
-// given speed. For the UCS test the lateral strain comes from the discs within one largest
-// diameter of the left and right edges.
+// given speed. The lateral strain (UCS) or the opening across the horizontal diameter (Brazilian)
+// comes from the discs within one largest diameter of the left and right edges.
 LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, WallSet& walls) {
   double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {

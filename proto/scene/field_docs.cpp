@@ -128,6 +128,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Friction coefficient between the platens and the discs. Unset: the grains' friction (dem.contact.friction). 0 models lubricated platens, which leave the specimen's ends free to expand sideways (no end confinement raising the UCS), as in the usual bonded-particle calibrations (docs/calibration.md)."},
     {"rockcut.LoadingTest.platen_speed_m_s",
      "Speed of each platen; the axial strain rate is 2 * speed / height."},
+    {"rockcut.LoadingTest.stop_at_split",
+     "Brazilian: end the run at the split instead of at time.end_time_s (summary.json then has split_detected true and the axial strain of the split). The halves would otherwise be crushed between the platens, which costs run time and tells nothing about the tensile strength."},
     {"rockcut.Output.frame_fields",
      "Per-particle fields stored in each frame. Fields that no module provides are refused. DEM fields: `position`, `velocity` [m/s], `radius`, `force` [N/m], `external_force` [N/m], `angular_velocity` [rad/s] and `damage` (D = 1 - bonds / initial bonds, paper figures 11-12). Fluid fields of the `explicit` and `implicit` models: `pressure` [Pa, absolute], `boundary` (0 interior, 1 drained surface, 2 sealed surface), `div_r` (Lucy's div r, eq. 24), `volumetric_strain_rate` [1/s] and `sp_volume` [m^2]."},
     {"rockcut.Output.frame_interval_s",

@@ -73,13 +73,38 @@ TEST(CalibrationSummary, BrazilianTensileStrength) {
   s.mutable_dem()->mutable_loading_test()->set_kind("brazilian");
   s.mutable_dem()->mutable_specimen()->set_diameter_m(0.04);
   CalibrationSummary c(s);
-  // Local crushing at the platens (1e5 -> 4e4) and the reloading to the split (1.2e5).
-  for (double f : {0.0, 5e4, 1e5, 4e4, 1.2e5, 2e4}) {
-    c.observe({{"axial_strain", 0.0}, {"platen_force_n_per_m", f}});
+  // Local crushing at the platens (1e5 -> 4e4) with the disc still closed, a partial crack
+  // (1.3e5 -> 0.8e5, opening 6e-4), the reloading to the split (1.6e5), the opening, then the
+  // halves crushed to a higher load (1.9e5).
+  const double forces[] = {0.0, 5e4, 1e5, 4e4, 1.3e5, 0.8e5, 1.6e5, 2e4, 1.9e5};
+  const double opening[] = {0.0, 1e-4, 2e-4, 2e-4, 3e-4, 6e-4, 8e-4, 2e-3, 3e-2};
+  for (int k = 0; k < 9; ++k) {
+    // stop_at_split (default true): the test is over at the split and not before.
+    EXPECT_EQ(c.test_over(), k > 7) << k;
+    c.observe({{"axial_strain", 1e-3 * k},
+               {"platen_force_n_per_m", forces[k]},
+               {"lateral_strain", opening[k]}});
   }
   Summary out;
   c.write(out);
-  EXPECT_NEAR(number(out, "bts_pa"), 2 * 1.2e5 / (std::numbers::pi * 0.04), 1e-6);
+  EXPECT_NEAR(number(out, "bts_pa"), 2 * 1.6e5 / (std::numbers::pi * 0.04), 1e-6);
+  EXPECT_TRUE(std::get<bool>(*out.get("split_detected")));
+  EXPECT_NEAR(number(out, "split_axial_strain"), 7e-3, 1e-15);
+}
+
+TEST(CalibrationSummary, BrazilianWithoutASplitReportsTheLargestLoadAndSaysSo) {
+  rockcut::Scene s;
+  s.mutable_dem()->mutable_loading_test()->set_kind("brazilian");
+  s.mutable_dem()->mutable_specimen()->set_diameter_m(0.04);
+  CalibrationSummary c(s);
+  for (double f : {0.0, 5e4, 1e5}) {
+    c.observe({{"axial_strain", 0.0}, {"platen_force_n_per_m", f}, {"lateral_strain", 1e-4}});
+  }
+  EXPECT_FALSE(c.test_over());
+  Summary out;
+  c.write(out);
+  EXPECT_NEAR(number(out, "bts_pa"), 2 * 1e5 / (std::numbers::pi * 0.04), 1e-6);
+  EXPECT_FALSE(std::get<bool>(*out.get("split_detected")));
 }
 
 TEST(CalibrationSummary, InactiveWithoutALoadingTest) {

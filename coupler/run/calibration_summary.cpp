@@ -57,8 +57,9 @@ void CalibrationSummary::observe(const std::vector<std::pair<std::string, double
   const double* strain = find(scalars, "axial_strain");
   const double* load = find(scalars, ucs_ ? "axial_stress_pa" : "platen_force_n_per_m");
   const double* lateral = find(scalars, "lateral_strain");
+  const double* gauge = find(scalars, "axial_strain_gauge");
   if (!strain || !load) return;
-  samples_.push_back({*strain, *load, lateral ? *lateral : 0.0});
+  samples_.push_back({*strain, *load, lateral ? *lateral : 0.0, gauge ? *gauge : *strain});
   if (ucs_ || split_) return;
   const Sample& s = samples_.back();
   largest_load_ = std::max(largest_load_, s.load);
@@ -78,12 +79,12 @@ bool CalibrationSummary::slopes_near_half_peak(const std::vector<Sample>& sample
   for (auto it = samples.begin(); it != peak; ++it) {
     if (it->load < lo * peak->load || it->load > hi * peak->load) continue;
     n += 1;
-    sx += it->axial_strain;
+    sx += it->gauge_strain;
     sy += it->load;
     sl += it->lateral_strain;
-    sxx += it->axial_strain * it->axial_strain;
-    sxy += it->axial_strain * it->load;
-    sxl += it->axial_strain * it->lateral_strain;
+    sxx += it->gauge_strain * it->gauge_strain;
+    sxy += it->gauge_strain * it->load;
+    sxl += it->gauge_strain * it->lateral_strain;
   }
   const double det = n * sxx - sx * sx;
   if (n < 3 || det <= 0) return false;

@@ -24,8 +24,11 @@ class CalibrationSummary {
 
   struct Sample {
     double axial_strain, load, lateral_strain;  // load: stress [Pa] (ucs) or force [N/m]
+    // UCS: the axial strain over the specimen's middle half (axial_strain_gauge), which E and nu
+    // are fitted against; the platens' strain where the DEM reports no gauge.
+    double gauge_strain;
   };
-  /// Least-squares slopes of load and lateral strain against axial strain over the samples before
+  /// Least-squares slopes of load and lateral strain against gauge strain over the samples before
   /// the failure peak whose load lies in [lo, hi] times the peak. The failure peak is the largest
   /// load before the load first drops below 80 % of the largest so far. Returns false with fewer than 3 samples.
   static bool slopes_near_half_peak(const std::vector<Sample>& samples, double lo, double hi,

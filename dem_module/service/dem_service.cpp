@@ -49,6 +49,7 @@ void DemService::handle(const wire::Message& request, wire::Message& reply) {
 void DemService::init(const wire::Init& init, wire::Message& reply) {
   setup_ = build_dem(init.scene());
   width_strips0_m_ = 0.0;
+  gauge_length0_m_ = 0.0;
   position_at_exchange_ = setup_.system->particles().position;
 
   wire::InitReply* r = reply.envelope.mutable_init_reply();
@@ -239,14 +240,18 @@ void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
   if (rig.ucs) out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa
   // UCS: the specimen's lateral strain. Brazilian: the opening of the disc across its horizontal
   // diameter over D, which jumps when the disc splits (the split detector's input).
-  auto mean_x = [&](const std::vector<std::uint32_t>& strip) {
+  auto mean = [&](const std::vector<std::uint32_t>& strip, int axis) {
     double sum = 0.0;
-    for (std::uint32_t i : strip) sum += s.particles().position[2 * i];
+    for (std::uint32_t i : strip) sum += s.particles().position[2 * i + axis];
     return strip.empty() ? 0.0 : sum / strip.size();
   };
-  if (width_strips0_m_ == 0.0) width_strips0_m_ = mean_x(rig.right_strip) - mean_x(rig.left_strip);
-  const double width = mean_x(rig.right_strip) - mean_x(rig.left_strip);
+  const double width = mean(rig.right_strip, 0) - mean(rig.left_strip, 0);
+  if (width_strips0_m_ == 0.0) width_strips0_m_ = width;
   out["lateral_strain"] = (width - width_strips0_m_) / width_strips0_m_;
+  if (!rig.ucs || rig.lower_gauge.empty() || rig.upper_gauge.empty()) return;
+  const double gauge = mean(rig.upper_gauge, 1) - mean(rig.lower_gauge, 1);
+  if (gauge_length0_m_ == 0.0) gauge_length0_m_ = gauge;
+  out["axial_strain_gauge"] = (gauge_length0_m_ - gauge) / gauge_length0_m_;  // compression +
 }
 
 void DemService::frame(const wire::FrameRequest& request, wire::Message& reply) {

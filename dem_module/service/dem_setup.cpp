@@ -79,6 +79,7 @@ Particles particles_from_scene(const rockcut::Dem& dem, std::string& report) {
       spec.origin_x_m = l.origin_m().x();
       spec.origin_y_m = l.origin_m().y();
       spec.density_kg_m3 = dem.density_kg_m3();
+      spec.hexagonal = l.arrangement() == "hexagonal";
       return make_lattice(spec);
     }
     case rockcut::Dem::kPackingFile:
@@ -152,9 +153,13 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
     walls.set_friction(rig.top, test.platen_friction());
     walls.set_friction(rig.bottom, test.platen_friction());
   }
+  const double lower = bottom + 0.25 * rig.height0_m, upper = bottom + 0.75 * rig.height0_m;
   for (std::uint32_t i = 0; i < p.size(); ++i) {
     if (p.position[2 * i] - p.radius[i] < left + 2 * r_max) rig.left_strip.push_back(i);
     if (p.position[2 * i] + p.radius[i] > right - 2 * r_max) rig.right_strip.push_back(i);
+    if (!rig.ucs) continue;
+    if (std::abs(p.position[2 * i + 1] - lower) < r_max) rig.lower_gauge.push_back(i);
+    if (std::abs(p.position[2 * i + 1] - upper) < r_max) rig.upper_gauge.push_back(i);
   }
   return rig;
 }
@@ -202,6 +207,11 @@ DemSetup build_dem(const rockcut::Scene& scene) {
                       b.tensile_strength_n_per_m(), b.shear_strength_n_per_m()};
     CellGrid grid;
     bonds = BondSet::install(particles, law, b.gap_tolerance_m(), grid);
+    char line[160];
+    std::snprintf(line, sizeof line, "; %zu bonds (%.3f per disc, gap <= %g m)", bonds.size(),
+                  2.0 * static_cast<double>(bonds.size()) / static_cast<double>(particles.size()),
+                  b.gap_tolerance_m());
+    setup.specimen_report += line;
     kn = std::max(kn, law.normal_stiffness_n_m);
     ks = std::max(ks, law.shear_stiffness_n_m);
   }

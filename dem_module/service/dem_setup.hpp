@@ -31,6 +31,10 @@ struct LoadingRig {
   std::uint32_t top = 0, bottom = 0;    ///< wall bodies
   double height0_m = 0.0, width0_m = 0.0;
   std::vector<std::uint32_t> left_strip, right_strip;  ///< discs whose mean x gives the width
+  /// UCS: discs within one largest radius of a quarter and three quarters of the height, whose
+  /// mean y give the gauge length (a strain gauge on the specimen's middle half, away from the
+  /// ends, which the platens crush and seat first).
+  std::vector<std::uint32_t> lower_gauge, upper_gauge;
 };
 
 struct DemSetup {

@@ -114,6 +114,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Iterations after which the solve stops with an error."},
     {"rockcut.ImplicitSolver.tolerance",
      "Relative residual (to the right-hand side, i.e. to the pressure change of the step) at which the solve stops."},
+    {"rockcut.Lattice.arrangement",
+     "`square`: rows spacing_m apart. `hexagonal`: rows spacing_m * sqrt(3)/2 apart with odd rows shifted by spacing_m / 2, six neighbours per disc; its elastic constants are known in closed form (DESIGN section 4, docs/calibration.md), which verifies the bonds and the UCS test."},
     {"rockcut.Lattice.nx",
      "Number of discs along x."},
     {"rockcut.Lattice.ny",

@@ -36,6 +36,24 @@ TEST(CalibrationSummary, LinearElasticThenBrittle) {
   EXPECT_NEAR(number(out, "poisson_ratio"), nu, 1e-12);
 }
 
+TEST(CalibrationSummary, ModulusAndPoissonRatioComeFromTheGaugeNotThePlatens) {
+  // The platens also close the seating gap of the rough ends (half the platen strain here); the
+  // gauge on the specimen's middle half sees only the specimen's strain.
+  CalibrationSummary c(ucs_scene());
+  const double e = 5.5e9, nu = 0.22;
+  for (int k = 0; k <= 100; ++k) {
+    const double gauge = 2.5e-5 * k;
+    c.observe({{"axial_strain", 2.0 * gauge},
+               {"axial_stress_pa", e * gauge},
+               {"lateral_strain", nu * gauge},
+               {"axial_strain_gauge", gauge}});
+  }
+  Summary out;
+  c.write(out);
+  EXPECT_NEAR(number(out, "youngs_modulus_pa") / e, 1.0, 1e-12);
+  EXPECT_NEAR(number(out, "poisson_ratio"), nu, 1e-12);
+}
+
 TEST(CalibrationSummary, StrengthIsTheFirstFailurePeakNotALaterCompaction) {
   CalibrationSummary c(ucs_scene());
   for (int k = 0; k <= 10; ++k) c.observe(sample(1e-4 * k, 1e6 * k, 0.0));  // peak 10 MPa

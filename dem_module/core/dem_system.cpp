@@ -169,6 +169,46 @@ void DemSystem::compute_internal_forces() {
     bonds_.remove_broken(particles_, time_s_, breaks_, freed_pairs_, ledger_);
     if (settings_.contact.normal_stiffness_n_m > 0) contacts_.add_pairs(freed_pairs_);
   }
+  if (!clamped_.empty()) hold_clamped_groups();
+}
+
+std::size_t DemSystem::add_clamped_group(std::vector<std::uint32_t> particles,
+                                         double velocity_y_m_s) {
+  ClampedGroup g;
+  g.particles = std::move(particles);
+  g.velocity_y_m_s = velocity_y_m_s;
+  clamped_.push_back(std::move(g));
+  // The present forces become the first reaction; no step has been taken with it, so no work.
+  const double boundary_work = ledger_.boundary_work_j;
+  hold_clamped_groups();
+  ledger_.boundary_work_j = boundary_work;
+  reset_clamped_velocities();
+  return clamped_.size() - 1;
+}
+
+void DemSystem::hold_clamped_groups() {
+  double* f = particles_.force.data();
+  for (ClampedGroup& g : clamped_) {
+    double reaction = 0.0;
+    for (std::uint32_t i : g.particles) {
+      reaction += f[2 * i + 1];
+      f[2 * i + 1] = 0.0;
+    }
+    // The clamp pushes each disc with -f_y while it moves v dt: trapezoid over the step.
+    ledger_.boundary_work_j -= 0.5 * (g.reaction_y_n_per_m + reaction) * g.velocity_y_m_s * dt_last_;
+    g.reaction_y_n_per_m = reaction;
+  }
+}
+
+void DemSystem::reset_clamped_velocities() {
+  double* v = particles_.velocity.data();
+  double* f = particles_.force.data();
+  for (const ClampedGroup& g : clamped_) {
+    for (std::uint32_t i : g.particles) {
+      v[2 * i + 1] = g.velocity_y_m_s;
+      f[2 * i + 1] = 0.0;  // so the next half kick leaves v_y alone too
+    }
+  }
 }
 
 void DemSystem::finish_forces(double kick_dt) {
@@ -222,6 +262,7 @@ void DemSystem::finish_forces(double kick_dt) {
   ledger_.damping_j += damping;
   ledger_.external_work_j += work;
   ledger_.gravity_work_j += gravity;
+  if (!clamped_.empty()) reset_clamped_velocities();
 }
 
 void DemSystem::step(double dt) {

@@ -38,6 +38,15 @@ struct DemSettings {
   std::optional<PrescribedMotion> prescribed_motion;
 };
 
+/// Discs whose vertical motion is prescribed (the clamped end layers of a UCS specimen): their y
+/// velocity is held at velocity_y_m_s, x and rotation stay free. The force that holds them is the
+/// reaction.
+struct ClampedGroup {
+  std::vector<std::uint32_t> particles;
+  double velocity_y_m_s = 0.0;
+  double reaction_y_n_per_m = 0.0;  ///< sum of the internal y forces on the group at the last step
+};
+
 class DemSystem {
  public:
   DemSystem(Particles particles, const DemSettings& settings, BondSet bonds = {},
@@ -55,6 +64,10 @@ class DemSystem {
   void finish_step(double dt, std::span<const double> external);
   /// Replaces the held external force and re-evaluates a^n without moving (used at t = 0).
   void set_external_force(std::span<const double> external);
+  /// Holds the y velocity of `particles` at velocity_y_m_s from now on (dry scenes: an external y
+  /// force on them is cancelled too). Returns the group's index for clamped_group().
+  std::size_t add_clamped_group(std::vector<std::uint32_t> particles, double velocity_y_m_s);
+  const ClampedGroup& clamped_group(std::size_t k) const { return clamped_[k]; }
 
   const Particles& particles() const { return particles_; }
   const BondSet& bonds() const { return bonds_; }
@@ -84,6 +97,11 @@ class DemSystem {
   /// Copies the fluid force into the held external force.
   void hold_external_force(std::span<const double> external);
   void rebuild_neighbours();
+  /// Takes the internal y force off the clamped discs into their groups' reactions and books the
+  /// work the clamps do (trapezoid over the step) as boundary work.
+  void hold_clamped_groups();
+  /// v_y of the clamped discs back to the prescribed value after a kick, and their y force to 0.
+  void reset_clamped_velocities();
 
   Particles particles_;
   DemSettings settings_;
@@ -96,6 +114,7 @@ class DemSystem {
   std::vector<BondBreak> breaks_;
   std::vector<std::uint32_t> freed_pairs_;
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
+  std::vector<ClampedGroup> clamped_;
   double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;
   double time_s_ = 0.0;

@@ -233,8 +233,13 @@ void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
   const LoadingRig& rig = setup_.rig;
   const WallBody& top = s.walls().bodies()[rig.top];
   const WallBody& bottom = s.walls().bodies()[rig.bottom];
-  // The discs push the top platen up and the bottom one down: the mean of both is the load.
-  const double force = 0.5 * (top.force_y - bottom.force_y);
+  // The discs push the top platen up and the bottom one down: the mean of both is the load. With
+  // clamped end layers the platens also hold those layers (their reactions).
+  double force = 0.5 * (top.force_y - bottom.force_y);
+  if (!rig.top_layer.empty()) {
+    force += 0.5 * (s.clamped_group(rig.top_layer_group).reaction_y_n_per_m -
+                    s.clamped_group(rig.bottom_layer_group).reaction_y_n_per_m);
+  }
   out["platen_force_n_per_m"] = force;
   out["axial_strain"] = (bottom.offset_y - top.offset_y) / rig.height0_m;
   if (rig.ucs) out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa

@@ -160,6 +160,9 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
     if (!rig.ucs) continue;
     if (std::abs(p.position[2 * i + 1] - lower) < r_max) rig.lower_gauge.push_back(i);
     if (std::abs(p.position[2 * i + 1] - upper) < r_max) rig.upper_gauge.push_back(i);
+    if (!test.clamp_end_layers()) continue;
+    if (p.position[2 * i + 1] + p.radius[i] > top - 2 * r_max) rig.top_layer.push_back(i);
+    if (p.position[2 * i + 1] - p.radius[i] < bottom + 2 * r_max) rig.bottom_layer.push_back(i);
   }
   return rig;
 }
@@ -248,6 +251,11 @@ DemSetup build_dem(const rockcut::Scene& scene) {
                                  dem.has_contact() || dem.has_bonds() ? ks : 0.0);
   setup.system = std::make_unique<DemSystem>(std::move(particles), settings, std::move(bonds),
                                              std::move(walls));
+  if (!setup.rig.top_layer.empty()) {
+    const double v = dem.loading_test().platen_speed_m_s();
+    setup.rig.top_layer_group = setup.system->add_clamped_group(setup.rig.top_layer, -v);
+    setup.rig.bottom_layer_group = setup.system->add_clamped_group(setup.rig.bottom_layer, v);
+  }
 
   // With prescribed motion the velocities are imposed: only the NaN guard means anything.
   const bool dynamic = !dem.has_prescribed_motion();

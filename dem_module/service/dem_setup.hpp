@@ -35,6 +35,10 @@ struct LoadingRig {
   /// mean y give the gauge length (a strain gauge on the specimen's middle half, away from the
   /// ends, which the platens crush and seat first).
   std::vector<std::uint32_t> lower_gauge, upper_gauge;
+  /// clamp_end_layers: the discs within one largest diameter of the top and bottom, which move
+  /// with the platens; top_layer_group / bottom_layer_group index DemSystem::clamped_group().
+  std::vector<std::uint32_t> top_layer, bottom_layer;
+  std::size_t top_layer_group = 0, bottom_layer_group = 0;
 };
 
 struct DemSetup {

@@ -126,6 +126,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Disc radius."},
     {"rockcut.Lattice.spacing_m",
      "Centre-to-centre distance."},
+    {"rockcut.LoadingTest.clamp_end_layers",
+     "UCS: the discs within one largest diameter of the specimen's top and bottom move down and up with the platens and freely sideways, like a specimen whose ends are lapped flat and lubricated. false: the platens push on the rough ends, whose few protruding discs seat and crush first (docs/calibration.md measures what that does to E and the UCS)."},
     {"rockcut.LoadingTest.platen_friction",
      "Friction coefficient between the platens and the discs. Unset: the grains' friction (dem.contact.friction). 0 models lubricated platens, which leave the specimen's ends free to expand sideways (no end confinement raising the UCS), as in the usual bonded-particle calibrations (docs/calibration.md)."},
     {"rockcut.LoadingTest.platen_speed_m_s",

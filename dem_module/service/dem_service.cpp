@@ -48,8 +48,6 @@ void DemService::handle(const wire::Message& request, wire::Message& reply) {
 
 void DemService::init(const wire::Init& init, wire::Message& reply) {
   setup_ = build_dem(init.scene());
-  width_strips0_m_ = 0.0;
-  gauge_length0_m_ = 0.0;
   position_at_exchange_ = setup_.system->particles().position;
 
   wire::InitReply* r = reply.envelope.mutable_init_reply();
@@ -236,7 +234,7 @@ void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
   // The discs push the top platen up and the bottom one down: the mean of both is the load. With
   // clamped end layers the platens also hold those layers (their reactions).
   double force = 0.5 * (top.force_y - bottom.force_y);
-  if (!rig.top_layer.empty()) {
+  if (rig.clamped_ends) {
     force += 0.5 * (s.clamped_group(rig.top_layer_group).reaction_y_n_per_m -
                     s.clamped_group(rig.bottom_layer_group).reaction_y_n_per_m);
   }
@@ -245,18 +243,14 @@ void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
   if (rig.ucs) out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa
   // UCS: the specimen's lateral strain. Brazilian: the opening of the disc across its horizontal
   // diameter over D, which jumps when the disc splits (the split detector's input).
-  auto mean = [&](const std::vector<std::uint32_t>& strip, int axis) {
-    double sum = 0.0;
-    for (std::uint32_t i : strip) sum += s.particles().position[2 * i + axis];
-    return strip.empty() ? 0.0 : sum / strip.size();
-  };
-  const double width = mean(rig.right_strip, 0) - mean(rig.left_strip, 0);
-  if (width_strips0_m_ == 0.0) width_strips0_m_ = width;
-  out["lateral_strain"] = (width - width_strips0_m_) / width_strips0_m_;
-  if (!rig.ucs || rig.lower_gauge.empty() || rig.upper_gauge.empty()) return;
-  const double gauge = mean(rig.upper_gauge, 1) - mean(rig.lower_gauge, 1);
-  if (gauge_length0_m_ == 0.0) gauge_length0_m_ = gauge;
-  out["axial_strain_gauge"] = (gauge_length0_m_ - gauge) / gauge_length0_m_;  // compression +
+  const Particles& p = s.particles();
+  const double width =
+      mean_coordinate(p, rig.right_strip, 0) - mean_coordinate(p, rig.left_strip, 0);
+  out["lateral_strain"] = (width - rig.strip_width0_m) / rig.strip_width0_m;
+  if (rig.gauge_length0_m == 0.0) return;
+  const double gauge =
+      mean_coordinate(p, rig.upper_gauge, 1) - mean_coordinate(p, rig.lower_gauge, 1);
+  out["axial_strain_gauge"] = (rig.gauge_length0_m - gauge) / rig.gauge_length0_m;  // compression +
 }
 
 void DemService::frame(const wire::FrameRequest& request, wire::Message& reply) {

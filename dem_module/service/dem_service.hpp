@@ -44,8 +44,6 @@ class DemService final : public wire::ModuleHandler {
   std::size_t breaks_sent_ = 0;               // breaks already handed out in frames
   double split_dt_s_ = 0.0;
   std::uint64_t guard_checked_step_ = 0;  // last step the guards ran on in a merged exchange
-  double width_strips0_m_ = 0.0;  // UCS: strip distance at the first report
-  double gauge_length0_m_ = 0.0;  // UCS: distance of the gauge strips at the first report
   std::string stopped_by_;        // the guard that stopped the time stepping, if any
 };
 

@@ -132,7 +132,9 @@ ToolPlacement add_tool(const rockcut::Tool& t, const Particles& p, WallSet& wall
 // Platens just touching the specimen's top and bottom, three specimen widths wide, closing at the
 // given speed. The lateral strain (UCS) or the opening across the horizontal diameter (Brazilian)
 // comes from the discs within one largest diameter of the left and right edges.
-LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, WallSet& walls) {
+LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, WallSet& walls,
+                       std::vector<std::uint32_t>& top_layer,
+                       std::vector<std::uint32_t>& bottom_layer) {
   double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     left = std::min(left, p.position[2 * i] - p.radius[i]);
@@ -161,9 +163,15 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
     if (std::abs(p.position[2 * i + 1] - lower) < r_max) rig.lower_gauge.push_back(i);
     if (std::abs(p.position[2 * i + 1] - upper) < r_max) rig.upper_gauge.push_back(i);
     if (!test.clamp_end_layers()) continue;
-    if (p.position[2 * i + 1] + p.radius[i] > top - 2 * r_max) rig.top_layer.push_back(i);
-    if (p.position[2 * i + 1] - p.radius[i] < bottom + 2 * r_max) rig.bottom_layer.push_back(i);
+    if (p.position[2 * i + 1] + p.radius[i] > top - 2 * r_max) top_layer.push_back(i);
+    if (p.position[2 * i + 1] - p.radius[i] < bottom + 2 * r_max) bottom_layer.push_back(i);
   }
+  rig.strip_width0_m = mean_coordinate(p, rig.right_strip, 0) - mean_coordinate(p, rig.left_strip, 0);
+  if (!rig.lower_gauge.empty() && !rig.upper_gauge.empty()) {
+    rig.gauge_length0_m =
+        mean_coordinate(p, rig.upper_gauge, 1) - mean_coordinate(p, rig.lower_gauge, 1);
+  }
+  rig.clamped_ends = !top_layer.empty();
   return rig;
 }
 
@@ -235,6 +243,7 @@ DemSetup build_dem(const rockcut::Scene& scene) {
     }
     setup.tool = add_tool(dem.tool(), particles, walls);
   }
+  std::vector<std::uint32_t> top_layer, bottom_layer;  // clamp_end_layers: handed to the system
   if (dem.has_loading_test()) {
     if (!dem.has_contact()) {
       throw std::invalid_argument("dem.loading_test needs dem.contact: platens push by contact");
@@ -242,7 +251,7 @@ DemSetup build_dem(const rockcut::Scene& scene) {
     if (dem.has_tool()) {
       throw std::invalid_argument("dem.loading_test and dem.tool exclude each other");
     }
-    setup.rig = add_platens(dem.loading_test(), particles, walls);
+    setup.rig = add_platens(dem.loading_test(), particles, walls, top_layer, bottom_layer);
   }
   if (!walls.empty() && !dem.has_contact()) {
     throw std::invalid_argument("dem.walls need dem.contact: walls push discs by contact");
@@ -251,10 +260,10 @@ DemSetup build_dem(const rockcut::Scene& scene) {
                                  dem.has_contact() || dem.has_bonds() ? ks : 0.0);
   setup.system = std::make_unique<DemSystem>(std::move(particles), settings, std::move(bonds),
                                              std::move(walls));
-  if (!setup.rig.top_layer.empty()) {
+  if (setup.rig.clamped_ends) {
     const double v = dem.loading_test().platen_speed_m_s();
-    setup.rig.top_layer_group = setup.system->add_clamped_group(setup.rig.top_layer, -v);
-    setup.rig.bottom_layer_group = setup.system->add_clamped_group(setup.rig.bottom_layer, v);
+    setup.rig.top_layer_group = setup.system->add_clamped_group(std::move(top_layer), -v);
+    setup.rig.bottom_layer_group = setup.system->add_clamped_group(std::move(bottom_layer), v);
   }
 
   // With prescribed motion the velocities are imposed: only the NaN guard means anything.

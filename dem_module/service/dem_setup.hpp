@@ -31,15 +31,24 @@ struct LoadingRig {
   std::uint32_t top = 0, bottom = 0;    ///< wall bodies
   double height0_m = 0.0, width0_m = 0.0;
   std::vector<std::uint32_t> left_strip, right_strip;  ///< discs whose mean x gives the width
+  double strip_width0_m = 0.0;                          ///< that width at t = 0
   /// UCS: discs within one largest radius of a quarter and three quarters of the height, whose
   /// mean y give the gauge length (a strain gauge on the specimen's middle half, away from the
   /// ends, which the platens crush and seat first).
   std::vector<std::uint32_t> lower_gauge, upper_gauge;
-  /// clamp_end_layers: the discs within one largest diameter of the top and bottom, which move
-  /// with the platens; top_layer_group / bottom_layer_group index DemSystem::clamped_group().
-  std::vector<std::uint32_t> top_layer, bottom_layer;
+  double gauge_length0_m = 0.0;  ///< that length at t = 0; 0 without a gauge
+  /// clamp_end_layers: the discs within one largest diameter of the top and bottom move with the
+  /// platens as DemSystem::clamped_group(top_layer_group) and (bottom_layer_group).
+  bool clamped_ends = false;
   std::size_t top_layer_group = 0, bottom_layer_group = 0;
 };
+
+/// Mean x (axis 0) or y (axis 1) of the discs in `strip`; 0 for an empty strip.
+inline double mean_coordinate(const Particles& p, const std::vector<std::uint32_t>& strip, int axis) {
+  double sum = 0.0;
+  for (std::uint32_t i : strip) sum += p.position[2 * i + axis];
+  return strip.empty() ? 0.0 : sum / static_cast<double>(strip.size());
+}
 
 struct DemSetup {
   std::unique_ptr<DemSystem> system;

@@ -92,15 +92,23 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
   if (broke) any_broken = true;
 }
 
-void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondBreak>& breaks,
-                            std::vector<std::uint32_t>& freed_pairs, EnergyLedger& ledger) {
+void BondSet::remove_broken(const Particles& p, double time_s, double contact_normal_n_m,
+                            std::vector<BondBreak>& breaks, std::vector<std::uint32_t>& freed_pairs,
+                            EnergyLedger& ledger) {
   std::size_t keep = 0;
   for (std::size_t k = 0; k < i_.size(); ++k) {
     if (broken_[k]) {
       const std::uint32_t i = i_[k], j = j_[k];
       const double fn = normal_force_at_break_[k], fs = shear_force_[k];
+      // A pair that breaks (in shear) while pressed together keeps its overlap in the contact
+      // spring that replaces the bond: that energy is not released.
+      const double dx = p.position[2 * j] - p.position[2 * i];
+      const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
+      const double overlap =
+          std::max(0.0, p.radius[i] + p.radius[j] - std::sqrt(dx * dx + dy * dy));
       ledger.broken_bond_j += 0.5 * fn * fn / law_.normal_stiffness_n_m +
-                              0.5 * fs * fs / law_.shear_stiffness_n_m;
+                              0.5 * fs * fs / law_.shear_stiffness_n_m -
+                              0.5 * contact_normal_n_m * overlap * overlap;
       breaks.push_back({static_cast<BreakMode>(broken_[k] - 1), time_s,
                         0.5 * (p.position[2 * i] + p.position[2 * j]),
                         0.5 * (p.position[2 * i + 1] + p.position[2 * j + 1]), i, j});

@@ -31,9 +31,12 @@ class BondSet {
   void compute(const Particles& p, double dt, std::size_t begin, std::size_t end, ForceView out,
                bool& any_broken);
   /// Removes the flagged bonds, appending their breaks (and the pairs, which may now collide) to
-  /// the given lists, and their elastic energy to the ledger.
-  void remove_broken(const Particles& p, double time_s, std::vector<BondBreak>& breaks,
-                     std::vector<std::uint32_t>& freed_pairs, EnergyLedger& ledger);
+  /// the given lists, and the elastic energy they release to the ledger: the bond's energy less
+  /// the normal energy of the contact spring a compressed pair starts with (contact_normal_n_m,
+  /// 0 without contacts), so that a shear break under compression books only what is lost.
+  void remove_broken(const Particles& p, double time_s, double contact_normal_n_m,
+                     std::vector<BondBreak>& breaks, std::vector<std::uint32_t>& freed_pairs,
+                     EnergyLedger& ledger);
 
   /// Elastic energy stored in the bonds at the current positions [J/m].
   double strain_energy(const Particles& p) const;

@@ -166,7 +166,8 @@ void DemSystem::compute_internal_forces() {
   }
   if (any_broken) {
     freed_pairs_.clear();
-    bonds_.remove_broken(particles_, time_s_, breaks_, freed_pairs_, ledger_);
+    bonds_.remove_broken(particles_, time_s_, settings_.contact.normal_stiffness_n_m, breaks_,
+                         freed_pairs_, ledger_);
     if (settings_.contact.normal_stiffness_n_m > 0) contacts_.add_pairs(freed_pairs_);
   }
   if (!clamped_.empty()) hold_clamped_groups();

@@ -13,7 +13,7 @@ struct EnergyLedger {
   double gravity_work_j = 0.0;    ///< done by gravity
   double damping_j = 0.0;         ///< dissipated by local damping (>= 0)
   double friction_j = 0.0;        ///< dissipated by sliding contacts (>= 0)
-  double broken_bond_j = 0.0;     ///< elastic energy released by bond breaks
+  double broken_bond_j = 0.0;     ///< released by bond breaks (less what a contact keeps)
 };
 
 }  // namespace rockcut::dem

@@ -129,6 +129,33 @@ ToolPlacement add_tool(const rockcut::Tool& t, const Particles& p, WallSet& wall
   return tool;
 }
 
+// Brazilian loading arcs (loading_test.loading_arc_deg): the discs of the rim layer, two largest
+// radii deep, whose centres lie within half the arc of the vertical diameter, above the centre
+// (top) and below it (bottom). The rim is the circle through the outermost disc edges.
+void select_loading_arcs(const rockcut::LoadingTest& test, const Particles& p,
+                         std::vector<std::uint32_t>& top_arc, std::vector<std::uint32_t>& bottom_arc) {
+  double x_c = 0.0, y_c = 0.0, r_max = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    x_c += p.position[2 * i];
+    y_c += p.position[2 * i + 1];
+    r_max = std::max(r_max, p.radius[i]);
+  }
+  x_c /= static_cast<double>(p.size());
+  y_c /= static_cast<double>(p.size());
+  double rim_m = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    rim_m = std::max(rim_m, std::hypot(p.position[2 * i] - x_c, p.position[2 * i + 1] - y_c) +
+                                p.radius[i]);
+  }
+  const double half_arc_rad = 0.5 * test.loading_arc_deg() * std::acos(-1.0) / 180.0;
+  for (std::uint32_t i = 0; i < p.size(); ++i) {
+    const double dx = p.position[2 * i] - x_c, dy = p.position[2 * i + 1] - y_c;
+    if (std::hypot(dx, dy) + p.radius[i] < rim_m - 2 * r_max) continue;
+    if (std::atan2(std::abs(dx), std::abs(dy)) > half_arc_rad) continue;
+    (dy > 0 ? top_arc : bottom_arc).push_back(i);
+  }
+}
+
 // Platens just touching the specimen's top and bottom, three specimen widths wide, closing at the
 // given speed. The lateral strain (UCS) or the opening across the horizontal diameter (Brazilian)
 // comes from the discs within one largest diameter of the left and right edges.
@@ -155,6 +182,24 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
     walls.set_friction(rig.top, test.platen_friction());
     walls.set_friction(rig.bottom, test.platen_friction());
   }
+  if (rig.ucs && test.loading_arc_deg() > 0) {
+    throw std::invalid_argument(
+        "dem.loading_test.loading_arc_deg: the loading arc is for kind \"brazilian\"; a UCS "
+        "specimen's ends are held with clamp_end_layers");
+  }
+  if (!rig.ucs && test.clamp_end_layers()) {
+    throw std::invalid_argument(
+        "dem.loading_test.clamp_end_layers: for kind \"ucs\"; a Brazilian disc is held over its "
+        "loading arcs with loading_arc_deg");
+  }
+  if (!rig.ucs && test.loading_arc_deg() > 0) {
+    select_loading_arcs(test, p, top_layer, bottom_layer);
+    if (top_layer.empty() || bottom_layer.empty()) {
+      throw std::invalid_argument("dem.loading_test.loading_arc_deg: an arc of " +
+                                  std::to_string(test.loading_arc_deg()) +
+                                  " deg holds no disc at the top or bottom; widen it");
+    }
+  }
   const double lower = bottom + 0.25 * rig.height0_m, upper = bottom + 0.75 * rig.height0_m;
   for (std::uint32_t i = 0; i < p.size(); ++i) {
     if (p.position[2 * i] - p.radius[i] < left + 2 * r_max) rig.left_strip.push_back(i);
@@ -171,7 +216,7 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
     rig.gauge_length0_m =
         mean_coordinate(p, rig.upper_gauge, 1) - mean_coordinate(p, rig.lower_gauge, 1);
   }
-  rig.clamped_ends = !top_layer.empty();
+  rig.clamped_ends = !top_layer.empty() && !bottom_layer.empty();
   return rig;
 }
 

@@ -37,8 +37,9 @@ struct LoadingRig {
   /// ends, which the platens crush and seat first).
   std::vector<std::uint32_t> lower_gauge, upper_gauge;
   double gauge_length0_m = 0.0;  ///< that length at t = 0; 0 without a gauge
-  /// clamp_end_layers: the discs within one largest diameter of the top and bottom move with the
-  /// platens as DemSystem::clamped_group(top_layer_group) and (bottom_layer_group).
+  /// clamp_end_layers (UCS: the discs within one largest diameter of the top and bottom) or
+  /// loading_arc_deg (Brazilian: the rim's discs within the loading arcs) move with the platens as
+  /// DemSystem::clamped_group(top_layer_group) and (bottom_layer_group).
   bool clamped_ends = false;
   std::size_t top_layer_group = 0, bottom_layer_group = 0;
 };

@@ -74,6 +74,29 @@ TEST(Bond, BrokenPairStillCollides) {
   EXPECT_EQ(s.contacts().size(), 1u) << "the freed pair joins the contact list";
 }
 
+// A bond pressed together and sheared breaks in shear; the contact spring that replaces it keeps
+// the overlap's normal energy. The strain energy plus the broken bonds' energy must therefore run on
+// through the break, changing by one step's work only (k dx per step: about 3e-7 J/m here), where
+// booking the whole bond energy as released would jump by the normal part, 1/2 F_n^2 / k_n
+// (about 3e-3 J/m at the break).
+TEST(Bond, ShearBreakUnderCompressionBooksOnlyTheReleasedEnergy) {
+  const BondLaw law = test::table1_bond();
+  const double dt = 1e-8;
+  DemSystem s = driven_pair(-1e-3, 1e-3, law);
+  double before = 0.0, normal_force = 0.0;
+  while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
+    before = s.strain_energy() + s.ledger().broken_bond_j;
+    normal_force = s.bonds().normal_force(0, s.particles());
+    s.step(dt);
+  }
+  ASSERT_EQ(s.breaks().size(), 1u);
+  ASSERT_EQ(s.breaks()[0].mode, BreakMode::shear);
+  const double kept = 0.5 * normal_force * normal_force / law.normal_stiffness_n_m;
+  ASSERT_GT(kept, 1e-3) << "the pair must be pressed hard enough for the test to tell";
+  const double after = s.strain_energy() + s.ledger().broken_bond_j;
+  EXPECT_NEAR(after, before, 1e-6) << "energy kept by the contact: " << kept << " J/m";
+}
+
 TEST(Bond, InstallationBondsTouchingPairsOnly) {
   Particles p = test::hex_block(6, 5, 1e-3);
   BondSet b = test::bond_all_touching(p, test::table1_bond());

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
@@ -79,6 +80,61 @@ TEST(CalibrationRun, ClampedEndLayersKeepTheLatticeModulusAndCloseTheEnergyLedge
   EXPECT_NEAR(number(s, "youngs_modulus_pa") * (nx + 0.5) / nx / e, 1.0, 0.025);
   EXPECT_NEAR(number(s, "poisson_ratio"), (kn - ks) / (3.0 * kn + ks), 0.015);
   EXPECT_LT(number(s, "energy_imbalance_rel"), 1e-6);
+}
+
+// The Brazilian test on loading arcs (loading_test.loading_arc_deg): Table 1's micro-parameters as
+// printed, a 20 mm disc held over 15 degree arcs. It must split through its centre in tension,
+// which is what the test measures: a crushing or shear failure gives a load but not a tensile
+// strength. Measured: the split detected at 1.6 ms; all 22 breaks in the disc's middle third
+// tensile; the energy ledger closed to 0.04 %. The bounds (70 % tensile, 2 %) separate this from a
+// shear failure (shear-weak bonds, T_s/T_n 0.4: 10 % of the middle breaks tensile, measured) and
+// from the ledger booking a shear break's kept contact energy as released (an imbalance of 4-6 %
+// in the 40 mm Brazilian runs before that was fixed).
+TEST(CalibrationRun, BrazilianDiscOnLoadingArcsSplitsInTensionThroughItsCentre) {
+  const fs::path dir = fresh_dir("brazilian_arcs");
+  const CouplerRun r = run_coupler(source("cases/calibration/brazilian.pbtxt"),
+                                   {"--set", "dem.specimen.diameter_m=0.02", "--set",
+                                    "output.frame_interval_s=0"},
+                                   dir, std::chrono::milliseconds(180000));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Summary s = Summary::read(r.out / "summary.json");
+  const auto split = s.get("split_detected");
+  ASSERT_TRUE(split && std::holds_alternative<bool>(*split) && std::get<bool>(*split));
+  EXPECT_LT(number(s, "energy_imbalance_rel"), 0.02);
+  const H5Reader h5(r.out / "run.h5");
+  const std::vector<double> x = h5.doubles("/breaks/x_m"), y = h5.doubles("/breaks/y_m"),
+                            mode = h5.doubles("/breaks/mode");
+  ASSERT_FALSE(mode.empty());
+  // The disc: diameter 0.02 m from the origin of its bounding box (specimen.origin_m unset).
+  const double centre = 0.01, third = 0.02 / 6.0;
+  int middle = 0, tensile = 0;
+  for (std::size_t k = 0; k < mode.size(); ++k) {
+    if (std::abs(x[k] - centre) > third || std::abs(y[k] - centre) > third) continue;
+    ++middle;
+    tensile += mode[k] == 0.0;
+  }
+  ASSERT_GT(middle, 5) << "no crack through the middle";
+  EXPECT_GT(tensile, 0.7 * middle) << tensile << " of " << middle << " middle breaks tensile";
+}
+
+// Each test's holding option belongs to it: asked of the other test, it is refused by name.
+TEST(CalibrationRun, HoldingOptionsOfTheOtherTestAreRefused) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"ucs", "dem.loading_test.loading_arc_deg=15"},
+      {"brazilian", "dem.loading_test.clamp_end_layers=true"},
+      {"brazilian", "dem.loading_test.loading_arc_deg=0.01"},  // holds no disc
+  };
+  for (const auto& [test, set] : cases) {
+    const fs::path dir = fresh_dir("refused_" + test);
+    std::string out, err;
+    const int code = run({bin("coupler"), "run", source("cases/calibration/" + test + ".pbtxt"),
+                          "--out", (dir / "out").string(), "--set", set},
+                         dir, "coupler", &out, &err, std::chrono::milliseconds(60000));
+    EXPECT_EQ(code, 2) << set << " (2: bad input)\n" << err;
+    const std::string field = set.substr(0, set.find('='));
+    EXPECT_NE(err.find(field), std::string::npos) << set << ": the message names no field\n" << err;
+    EXPECT_FALSE(fs::exists(dir / "out")) << set << ": something was written";
+  }
 }
 
 }  // namespace

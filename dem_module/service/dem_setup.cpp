@@ -130,15 +130,15 @@ ToolPlacement add_tool(const rockcut::Tool& t, const Particles& p, WallSet& wall
 }
 
 // Brazilian loading arcs (loading_test.loading_arc_deg): the discs of the rim layer, two largest
-// radii deep, whose centres lie within half the arc of the vertical diameter, above the centre
-// (top) and below it (bottom). The rim is the circle through the outermost disc edges.
-void select_loading_arcs(const rockcut::LoadingTest& test, const Particles& p,
+// radii (r_max) deep, whose centres lie within half the arc of the vertical diameter, above the
+// disc's centroid (top) and below it (bottom). The rim is the circle about the centroid through
+// the outermost disc edges.
+void select_loading_arcs(double arc_deg, double r_max, const Particles& p,
                          std::vector<std::uint32_t>& top_arc, std::vector<std::uint32_t>& bottom_arc) {
-  double x_c = 0.0, y_c = 0.0, r_max = 0.0;
+  double x_c = 0.0, y_c = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     x_c += p.position[2 * i];
     y_c += p.position[2 * i + 1];
-    r_max = std::max(r_max, p.radius[i]);
   }
   x_c /= static_cast<double>(p.size());
   y_c /= static_cast<double>(p.size());
@@ -147,7 +147,7 @@ void select_loading_arcs(const rockcut::LoadingTest& test, const Particles& p,
     rim_m = std::max(rim_m, std::hypot(p.position[2 * i] - x_c, p.position[2 * i + 1] - y_c) +
                                 p.radius[i]);
   }
-  const double half_arc_rad = 0.5 * test.loading_arc_deg() * std::acos(-1.0) / 180.0;
+  const double half_arc_rad = 0.5 * arc_deg * std::acos(-1.0) / 180.0;
   for (std::uint32_t i = 0; i < p.size(); ++i) {
     const double dx = p.position[2 * i] - x_c, dy = p.position[2 * i + 1] - y_c;
     if (std::hypot(dx, dy) + p.radius[i] < rim_m - 2 * r_max) continue;
@@ -162,6 +162,18 @@ void select_loading_arcs(const rockcut::LoadingTest& test, const Particles& p,
 LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, WallSet& walls,
                        std::vector<std::uint32_t>& top_layer,
                        std::vector<std::uint32_t>& bottom_layer) {
+  const bool ucs = test.kind() == "ucs";
+  // Each test's holding option belongs to it; refused before anything is built.
+  if (ucs && test.loading_arc_deg() > 0) {
+    throw std::invalid_argument(
+        "dem.loading_test.loading_arc_deg: the loading arc is for kind \"brazilian\"; a UCS "
+        "specimen's ends are held with clamp_end_layers");
+  }
+  if (!ucs && test.clamp_end_layers()) {
+    throw std::invalid_argument(
+        "dem.loading_test.clamp_end_layers: for kind \"ucs\"; a Brazilian disc is held over its "
+        "loading arcs with loading_arc_deg");
+  }
   double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     left = std::min(left, p.position[2 * i] - p.radius[i]);
@@ -172,7 +184,7 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
   }
   LoadingRig rig;
   rig.present = true;
-  rig.ucs = test.kind() == "ucs";
+  rig.ucs = ucs;
   rig.height0_m = top - bottom;
   rig.width0_m = right - left;
   const double w = right - left, v = test.platen_speed_m_s();
@@ -182,18 +194,8 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
     walls.set_friction(rig.top, test.platen_friction());
     walls.set_friction(rig.bottom, test.platen_friction());
   }
-  if (rig.ucs && test.loading_arc_deg() > 0) {
-    throw std::invalid_argument(
-        "dem.loading_test.loading_arc_deg: the loading arc is for kind \"brazilian\"; a UCS "
-        "specimen's ends are held with clamp_end_layers");
-  }
-  if (!rig.ucs && test.clamp_end_layers()) {
-    throw std::invalid_argument(
-        "dem.loading_test.clamp_end_layers: for kind \"ucs\"; a Brazilian disc is held over its "
-        "loading arcs with loading_arc_deg");
-  }
   if (!rig.ucs && test.loading_arc_deg() > 0) {
-    select_loading_arcs(test, p, top_layer, bottom_layer);
+    select_loading_arcs(test.loading_arc_deg(), r_max, p, top_layer, bottom_layer);
     if (top_layer.empty() || bottom_layer.empty()) {
       throw std::invalid_argument("dem.loading_test.loading_arc_deg: an arc of " +
                                   std::to_string(test.loading_arc_deg()) +

@@ -60,13 +60,32 @@ void DemSystem::rebuild_neighbours() {
   ++rebuilds_;
 }
 
-void DemSystem::kick_drift(double dt, bool kick) {
-  const std::size_t n = particles_.size();
+ThreadSums DemSystem::total_sums() const {
+  // A fixed order of addition: the same bits for the same thread count.
+  ThreadSums total;
+  for (const ThreadSums& s : sums_) {
+    total.vmax2 = std::max(total.vmax2, s.vmax2);
+    total.external_work_j += s.external_work_j;
+    total.gravity_work_j += s.gravity_work_j;
+    total.damping_j += s.damping_j;
+    total.friction_j += s.friction_j;
+    total.any_broken = total.any_broken || s.any_broken;
+  }
+  return total;
+}
+
+void DemSystem::start_sums(int threads) {
+  sums_.resize(static_cast<std::size_t>(threads));  // allocates only when the count grows
+  for (ThreadSums& s : sums_) s = ThreadSums{};
+}
+
+void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool kick,
+                            bool reset_forces, ThreadSums& sums) {
   double* x = particles_.position.data();
   double* v = particles_.velocity.data();
   double* w = particles_.angular_velocity.data();
-  const double* f = particles_.force.data();
-  const double* q = particles_.torque.data();
+  double* f = particles_.force.data();
+  double* q = particles_.torque.data();
   const double* inv_i = particles_.inv_inertia.data();
   const double h = 0.5 * dt;
   const double* fe = particles_.external_force.data();
@@ -77,10 +96,8 @@ void DemSystem::kick_drift(double dt, bool kick) {
   double vmax2 = 0.0, work = 0.0, gravity = 0.0, damping = 0.0;
   // Verlet moves x by v^{n+1/2} dt under the mean of F^n and F^{n+1}: each force's work over the
   // drift is the trapezoid 1/2 (F^n + F^{n+1}) . dx. The F^n halves are added here, the F^{n+1}
-  // halves in finish_forces().
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (settings_.threads > 1) \
-    reduction(max : vmax2) reduction(+ : work, gravity, damping)
-  for (std::size_t i = 0; i < n; ++i) {
+  // halves in finish_range().
+  for (std::size_t i = begin; i < end; ++i) {
     if (kick) {  // eq. 6, fused with the drift: one pass over the particles
       v[2 * i] += h * f[2 * i] * inv_m[i];
       v[2 * i + 1] += h * f[2 * i + 1] * inv_m[i];
@@ -95,12 +112,112 @@ void DemSystem::kick_drift(double dt, bool kick) {
       gravity += (gx * vx + gy * vy) / inv_m[i] * 0.5 * dt;
     }
     if (fd) damping -= (fd[3 * i] * vx + fd[3 * i + 1] * vy + fd[3 * i + 2] * w[i]) * 0.5 * dt;
+    if (reset_forces) {  // F^n has been used: start F^{n+1} from gravity in the same pass
+      f[2 * i] = gx / inv_m[i];
+      f[2 * i + 1] = gy / inv_m[i];
+      q[i] = 0.0;
+    }
   }
-  ledger_.external_work_j += work;
-  ledger_.gravity_work_j += gravity;
-  ledger_.damping_j += damping;
+  sums.vmax2 = std::max(sums.vmax2, vmax2);
+  sums.external_work_j += work;
+  sums.gravity_work_j += gravity;
+  sums.damping_j += damping;
+}
+
+void DemSystem::reset_forces_range(std::size_t begin, std::size_t end) {
+  double* f = particles_.force.data();
+  double* q = particles_.torque.data();
+  const double* inv_m = particles_.inv_mass.data();
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  for (std::size_t i = begin; i < end; ++i) {
+    f[2 * i] = gx / inv_m[i];
+    f[2 * i + 1] = gy / inv_m[i];
+    q[i] = 0.0;
+  }
+}
+
+void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
+  const ForceView out = buffers_.view(t, particles_);
+  const auto [b0, b1] = share(bonds_.size(), t, threads);
+  bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken);
+  if (settings_.contact.normal_stiffness_n_m > 0) {
+    const auto [c0, c1] = share(contacts_.size(), t, threads);
+    contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, sums.friction_j);
+  }
+  // The walls add into thread 0's view, the particle arrays themselves; the ledger is written by
+  // this thread alone inside the region.
+  if (t == 0 && !walls_.empty()) {
+    walls_.compute(particles_, settings_.contact, dt, out, ledger_.boundary_work_j,
+                   ledger_.friction_j);
+  }
+}
+
+void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
+                             ThreadSums& sums) {
+  double* f = particles_.force.data();
+  double* q = particles_.torque.data();
+  const double* fe = particles_.external_force.data();
+  double* v = particles_.velocity.data();
+  double* w = particles_.angular_velocity.data();
+  const double* inv_m = particles_.inv_mass.data();
+  const double* inv_i = particles_.inv_inertia.data();
+  const double kick = 0.5 * kick_dt;
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  const double alpha = settings_.local_damping;
+  double* fd = damping_force_.data();
+  const double h = 0.5 * dt_last_;  // the F^{n+1} half of the trapezoid, see drift_range()
+  const bool body = has_body_forces_;
+  double damping = 0.0, work = 0.0, gravity = 0.0;
+  for (std::size_t i = begin; i < end; ++i) {
+    double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
+    const double vx = v[2 * i], vy = v[2 * i + 1];
+    if (body) {
+      work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * h;
+      gravity += (gx * vx + gy * vy) / inv_m[i] * h;
+    }
+    if (alpha > 0) {
+      // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
+      const double dx = -alpha * std::abs(fx) * ((vx > 0) - (vx < 0));
+      const double dy = -alpha * std::abs(fy) * ((vy > 0) - (vy < 0));
+      const double dq = -alpha * std::abs(tq) * ((w[i] > 0) - (w[i] < 0));
+      damping -= (dx * vx + dy * vy + dq * w[i]) * h;
+      fd[3 * i] = dx;
+      fd[3 * i + 1] = dy;
+      fd[3 * i + 2] = dq;
+      fx += dx;
+      fy += dy;
+      tq += dq;
+    }
+    f[2 * i] = fx;
+    f[2 * i + 1] = fy;
+    q[i] = tq;
+    if (kick_dt > 0) {  // eq. 8, fused: v^{n+1} = v^{n+1/2} + a^{n+1} dt/2
+      v[2 * i] += kick * fx * inv_m[i];
+      v[2 * i + 1] += kick * fy * inv_m[i];
+      w[i] += kick * tq * inv_i[i];
+    }
+  }
+  sums.damping_j += damping;
+  sums.external_work_j += work;
+  sums.gravity_work_j += gravity;
+}
+
+void DemSystem::kick_drift(double dt, bool kick) {
+  const std::size_t n = particles_.size();
+  const int threads = settings_.threads;
+  start_sums(threads);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const int t = threads > 1 ? thread_id() : 0;
+    const auto [p0, p1] = share(n, t, threads);
+    drift_range(p0, p1, dt, kick, /*reset_forces=*/false, sums_[t]);
+  }
+  const ThreadSums s = total_sums();
+  ledger_.external_work_j += s.external_work_j;
+  ledger_.gravity_work_j += s.gravity_work_j;
+  ledger_.damping_j += s.damping_j;
   // A bound on how far any disc moved since the rebuild: sum of the largest step lengths.
-  max_drift_m_ += std::sqrt(vmax2) * dt;
+  max_drift_m_ += std::sqrt(s.vmax2) * dt;
   walls_.move(dt);
 }
 
@@ -125,52 +242,35 @@ void DemSystem::compute_internal_forces() {
                         0.5 * settings_.skin_m) {
     rebuild_neighbours();
   }
-  double* f = particles_.force.data();
-  double* q = particles_.torque.data();
-  const double* inv_m = particles_.inv_mass.data();
-  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
   const int threads = has_pairs_ ? settings_.threads : 1;
   if (has_pairs_) buffers_.resize(threads, n);
-  bool any_broken = false;
-  double friction = 0.0;
+  start_sums(threads);
   const double dt = dt_last_;
   // One parallel region per force evaluation: reset, pair loops, reduction, with barriers between.
-#pragma omp parallel num_threads(threads) if (threads > 1) reduction(|| : any_broken) \
-    reduction(+ : friction)
+#pragma omp parallel num_threads(threads) if (threads > 1)
   {
     const int t = threads > 1 ? thread_id() : 0;
     const auto [p0, p1] = share(n, t, threads);
-    for (std::size_t i = p0; i < p1; ++i) {
-      f[2 * i] = gx / inv_m[i];
-      f[2 * i + 1] = gy / inv_m[i];
-      q[i] = 0.0;
-    }
+    reset_forces_range(p0, p1);
     if (has_pairs_) {
 #pragma omp barrier
-      const ForceView out = buffers_.view(t, particles_);
-      const auto [b0, b1] = share(bonds_.size(), t, threads);
-      bonds_.compute(particles_, dt, b0, b1, out, any_broken);
-      if (settings_.contact.normal_stiffness_n_m > 0) {
-        const auto [c0, c1] = share(contacts_.size(), t, threads);
-        contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, friction);
-      }
+      pair_forces(t, threads, dt, sums_[t]);
 #pragma omp barrier
       buffers_.reduce(particles_, p0, p1);
     }
   }
   if (!has_pairs_) return;
-  ledger_.friction_j += friction;
-  if (!walls_.empty()) {
-    walls_.compute(particles_, settings_.contact, dt, buffers_.view(0, particles_),
-                   ledger_.boundary_work_j, ledger_.friction_j);
-  }
-  if (any_broken) {
-    freed_pairs_.clear();
-    bonds_.remove_broken(particles_, time_s_, settings_.contact.normal_stiffness_n_m, breaks_,
-                         freed_pairs_, ledger_);
-    if (settings_.contact.normal_stiffness_n_m > 0) contacts_.add_pairs(freed_pairs_);
-  }
+  const ThreadSums s = total_sums();
+  ledger_.friction_j += s.friction_j;
+  if (s.any_broken) remove_broken_bonds();
   if (!clamped_.empty()) hold_clamped_groups();
+}
+
+void DemSystem::remove_broken_bonds() {
+  freed_pairs_.clear();
+  bonds_.remove_broken(particles_, time_s_, settings_.contact.normal_stiffness_n_m, breaks_,
+                       freed_pairs_, ledger_);
+  if (settings_.contact.normal_stiffness_n_m > 0) contacts_.add_pairs(freed_pairs_);
 }
 
 std::size_t DemSystem::add_clamped_group(std::vector<std::uint32_t> particles,
@@ -214,63 +314,93 @@ void DemSystem::reset_clamped_velocities() {
 
 void DemSystem::finish_forces(double kick_dt) {
   const std::size_t n = particles_.size();
-  double* f = particles_.force.data();
-  double* q = particles_.torque.data();
-  const double* fe = particles_.external_force.data();
-  double* v = particles_.velocity.data();
-  double* w = particles_.angular_velocity.data();
-  const double* inv_m = particles_.inv_mass.data();
-  const double* inv_i = particles_.inv_inertia.data();
-  const double kick = 0.5 * kick_dt;
-  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
-  const double alpha = settings_.local_damping;
-  if (alpha > 0) damping_force_.resize(3 * n);
-  double* fd = damping_force_.data();
-  const double h = 0.5 * dt_last_;  // the F^{n+1} half of the trapezoid, see drift()
-  const bool body = has_body_forces_;
-  double damping = 0.0, work = 0.0, gravity = 0.0;
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) \
-    if (settings_.threads > 1) reduction(+ : damping, work, gravity)
-  for (std::size_t i = 0; i < n; ++i) {
-    double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
-    const double vx = v[2 * i], vy = v[2 * i + 1];
-    if (body) {
-      work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * h;
-      gravity += (gx * vx + gy * vy) / inv_m[i] * h;
-    }
-    if (alpha > 0) {
-      // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
-      const double dx = -alpha * std::abs(fx) * ((vx > 0) - (vx < 0));
-      const double dy = -alpha * std::abs(fy) * ((vy > 0) - (vy < 0));
-      const double dq = -alpha * std::abs(tq) * ((w[i] > 0) - (w[i] < 0));
-      damping -= (dx * vx + dy * vy + dq * w[i]) * h;
-      fd[3 * i] = dx;
-      fd[3 * i + 1] = dy;
-      fd[3 * i + 2] = dq;
-      fx += dx;
-      fy += dy;
-      tq += dq;
-    }
-    f[2 * i] = fx;
-    f[2 * i + 1] = fy;
-    q[i] = tq;
-    if (kick_dt > 0) {  // eq. 8, fused: v^{n+1} = v^{n+1/2} + a^{n+1} dt/2
-      v[2 * i] += kick * fx * inv_m[i];
-      v[2 * i + 1] += kick * fy * inv_m[i];
-      w[i] += kick * tq * inv_i[i];
-    }
+  const int threads = settings_.threads;
+  if (settings_.local_damping > 0) damping_force_.resize(3 * n);
+  start_sums(threads);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const int t = threads > 1 ? thread_id() : 0;
+    const auto [p0, p1] = share(n, t, threads);
+    finish_range(p0, p1, kick_dt, sums_[t]);
   }
-  ledger_.damping_j += damping;
-  ledger_.external_work_j += work;
-  ledger_.gravity_work_j += gravity;
+  const ThreadSums s = total_sums();
+  ledger_.damping_j += s.damping_j;
+  ledger_.external_work_j += s.external_work_j;
+  ledger_.gravity_work_j += s.gravity_work_j;
   if (!clamped_.empty()) reset_clamped_velocities();
 }
 
 void DemSystem::step(double dt) {
-  begin_step(dt);
-  compute_internal_forces();
-  finish_forces(settings_.prescribed_motion ? 0.0 : dt);
-  in_split_step_ = false;
+  if (settings_.prescribed_motion || !has_pairs_) {
+    begin_step(dt);
+    compute_internal_forces();
+    finish_forces(settings_.prescribed_motion ? 0.0 : dt);
+    in_split_step_ = false;
+    return;
+  }
+  if (in_split_step_) throw std::logic_error("step inside a split step");
+  full_step(dt);
+}
+
+void DemSystem::full_step(double dt) {
+  // The same arithmetic as begin_step + compute_internal_forces + finish_forces, in one parallel
+  // region: each fork, join or barrier wakes a sleeping thread (OMP_WAIT_POLICY=PASSIVE), which
+  // costs tens of microseconds here, so the step has three synchronisation points instead of
+  // eight. The particle ranges are the same in every phase, so drift, reduction and finish need
+  // no barrier between them.
+  const std::size_t n = particles_.size();
+  const int threads = settings_.threads;
+  dt_last_ = dt;
+  time_s_ += dt;
+  ++steps_;
+  walls_.move(dt);  // the walls do not depend on the discs: moved before the region
+  buffers_.resize(threads, n);
+  if (settings_.local_damping > 0) damping_force_.resize(3 * n);
+  start_sums(threads);
+  // Read before the region: a rebuild inside it resets both.
+  const double drift_before_m = max_drift_m_ + walls_.displacement_since_rebuild();
+  bool rebuilt = false;
+  double vmax2 = 0.0;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const int t = threads > 1 ? thread_id() : 0;
+    const auto [p0, p1] = share(n, t, threads);
+    drift_range(p0, p1, dt, /*kick=*/true, /*reset_forces=*/true, sums_[t]);
+#pragma omp barrier
+    // Every thread reaches the same decision from the same numbers.
+    double v2 = 0.0;
+    for (const ThreadSums& s : sums_) v2 = std::max(v2, s.vmax2);
+    if (has_pairs_ && drift_before_m + std::sqrt(v2) * dt > 0.5 * settings_.skin_m) {
+#pragma omp single
+      {
+        rebuild_neighbours();
+        rebuilt = true;
+      }  // implied barrier: the lists are ready for every thread
+    }
+    pair_forces(t, threads, dt, sums_[t]);
+#pragma omp barrier
+    buffers_.reduce(particles_, p0, p1);
+    if (!clamped_.empty()) {
+#pragma omp barrier
+#pragma omp single
+      hold_clamped_groups();
+    }
+    if (t == 0) vmax2 = v2;
+    finish_range(p0, p1, dt, sums_[t]);
+  }
+  const ThreadSums s = total_sums();
+  ledger_.external_work_j += s.external_work_j;
+  ledger_.gravity_work_j += s.gravity_work_j;
+  ledger_.damping_j += s.damping_j;
+  ledger_.friction_j += s.friction_j;
+  if (rebuilt) {
+    max_drift_m_ = 0.0;
+  } else {
+    max_drift_m_ += std::sqrt(vmax2) * dt;
+  }
+  if (s.any_broken) remove_broken_bonds();
+  if (!clamped_.empty()) reset_clamped_velocities();
+  internal_forces_current_ = true;
 }
 
 void DemSystem::begin_step(double dt) {

@@ -47,6 +47,14 @@ struct ClampedGroup {
   double reaction_y_n_per_m = 0.0;  ///< sum of the internal y forces on the group at the last step
 };
 
+/// What one thread sums over its share of a pass; combined in thread order afterwards, so the
+/// same thread count gives the same bits. A cache line each, so the threads do not share one.
+struct alignas(64) ThreadSums {
+  double vmax2 = 0.0;  ///< largest v^2 [m^2/s^2]
+  double external_work_j = 0.0, gravity_work_j = 0.0, damping_j = 0.0, friction_j = 0.0;
+  bool any_broken = false;
+};
+
 class DemSystem {
  public:
   DemSystem(Particles particles, const DemSettings& settings, BondSet bonds = {},
@@ -87,8 +95,22 @@ class DemSystem {
   double strain_energy() const;
 
  private:
+  /// A whole step in one parallel region (step() when no motion is prescribed).
+  void full_step(double dt);
   /// Eq. 6 (if `kick`) and eq. 5 in one pass; adds the F^n halves of the work trapezoids.
   void kick_drift(double dt, bool kick);
+  // The per-particle passes on [begin, end), shared by the split step and full_step().
+  /// Eqs. 6 and 5; with reset_forces the force then restarts from gravity.
+  void drift_range(std::size_t begin, std::size_t end, double dt, bool kick, bool reset_forces,
+                   ThreadSums& sums);
+  void reset_forces_range(std::size_t begin, std::size_t end);
+  /// Thread t's share of the bonds and contacts, into its force view; thread 0 adds the walls.
+  void pair_forces(int t, int threads, double dt, ThreadSums& sums);
+  /// See finish_forces().
+  void finish_range(std::size_t begin, std::size_t end, double kick_dt, ThreadSums& sums);
+  void start_sums(int threads);
+  ThreadSums total_sums() const;
+  void remove_broken_bonds();
   /// Prescribed motion: the velocity of the field at the mid-step time t (replaces the kicks).
   void set_prescribed_velocity(double t);
   /// total force = internal + external, then local damping (eq. 10); accumulates work terms;
@@ -115,6 +137,7 @@ class DemSystem {
   std::vector<std::uint32_t> freed_pairs_;
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
   std::vector<ClampedGroup> clamped_;
+  std::vector<ThreadSums> sums_;  ///< one per thread, for the pass in progress
   double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;
   double time_s_ = 0.0;

@@ -1,6 +1,9 @@
 #include "core/packing_file.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <cstdint>
+#include <numeric>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -17,6 +20,34 @@ namespace {
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 }  // namespace
+
+Packing in_cell_order(const Packing& packing, double cell_m) {
+  const std::size_t n = packing.size();
+  if (n == 0 || !(cell_m > 0)) return packing;
+  const auto [x_lo, x_hi] = std::minmax_element(packing.x_m.begin(), packing.x_m.end());
+  const double y_lo = *std::min_element(packing.y_m.begin(), packing.y_m.end());
+  const auto ncols = static_cast<std::int64_t>((*x_hi - *x_lo) / cell_m) + 1;
+  std::vector<std::int64_t> cell(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto col = static_cast<std::int64_t>((packing.x_m[i] - *x_lo) / cell_m);
+    const auto row = static_cast<std::int64_t>((packing.y_m[i] - y_lo) / cell_m);
+    cell[i] = row * ncols + std::min(col, ncols - 1);
+  }
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return cell[a] < cell[b]; });
+  Packing out;
+  out.x_m.reserve(n);
+  out.y_m.reserve(n);
+  out.radius_m.reserve(n);
+  for (std::size_t i : order) {
+    out.x_m.push_back(packing.x_m[i]);
+    out.y_m.push_back(packing.y_m[i]);
+    out.radius_m.push_back(packing.radius_m[i]);
+  }
+  return out;
+}
 
 Packing read_packing_file(const std::filesystem::path& path) {
   std::ifstream in(path);

@@ -8,8 +8,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
+#include <random>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "core/packing_file.hpp"
 #include "core/specimen_generator.hpp"
@@ -330,6 +333,46 @@ TEST(PackingFile, RoundTripIsBitExact) {
   EXPECT_TRUE(bit_identical(p.x_m, q.x_m));
   EXPECT_TRUE(bit_identical(p.y_m, q.y_m));
   EXPECT_TRUE(bit_identical(p.radius_m, q.radius_m));
+}
+
+TEST(PackingFile, CellOrderIsARenumberingInRowsOfCells) {
+  // A shuffled generated packing comes back as the same discs, row by row of cells and left to
+  // right within a row.
+  Packing p = generate_packing(brazilian_spec());
+  std::vector<std::size_t> shuffle(p.size());
+  std::iota(shuffle.begin(), shuffle.end(), std::size_t{0});
+  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937_64(7));
+  Packing random;
+  for (std::size_t i : shuffle) {
+    random.x_m.push_back(p.x_m[i]);
+    random.y_m.push_back(p.y_m[i]);
+    random.radius_m.push_back(p.radius_m[i]);
+  }
+  const double cell = 2.0 * brazilian_spec().radius_max_m;
+  const Packing sorted = in_cell_order(random, cell);
+  ASSERT_EQ(sorted.size(), p.size());
+  auto key = [](const Packing& q, std::size_t i) {
+    return std::tuple(q.x_m[i], q.y_m[i], q.radius_m[i]);
+  };
+  std::vector<std::tuple<double, double, double>> a, b;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    a.push_back(key(p, i));
+    b.push_back(key(sorted, i));
+  }
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);  // a permutation: nothing lost, nothing changed
+  const double y0 = *std::min_element(sorted.y_m.begin(), sorted.y_m.end());
+  const double x0 = *std::min_element(sorted.x_m.begin(), sorted.x_m.end());
+  for (std::size_t i = 1; i < sorted.size(); ++i) {
+    const auto row0 = static_cast<long>((sorted.y_m[i - 1] - y0) / cell);
+    const auto row1 = static_cast<long>((sorted.y_m[i] - y0) / cell);
+    ASSERT_LE(row0, row1) << i;
+    if (row0 == row1) {
+      ASSERT_LE(static_cast<long>((sorted.x_m[i - 1] - x0) / cell),
+                static_cast<long>((sorted.x_m[i] - x0) / cell)) << i;
+    }
+  }
 }
 
 TEST(PackingFile, CommentsAndBlankLines) {

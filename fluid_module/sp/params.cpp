@@ -35,6 +35,7 @@ SpParams sp_params_from_scene(const rockcut::Scene& scene) {
   p.force_form = f.force_form() == "gradient" ? ForceForm::gradient : ForceForm::adjoint;
   p.volume_iterations = f.volume_iterations();
   p.skin = f.neighbour_skin();
+  p.geometry_refresh = f.geometry_refresh_distance();
   p.solver_tolerance = f.implicit().tolerance();
   p.solver_max_iterations = f.implicit().max_iterations();
   p.max_diffusion_number = f.implicit().max_diffusion_number();

@@ -36,6 +36,9 @@ struct SpParams {
   ForceForm force_form = ForceForm::adjoint;
   unsigned volume_iterations = 3;
   double skin = 0.1;                   ///< neighbour skin, fraction of h
+  /// Recompute the SP geometry only after a particle or wall has moved this far, fraction of h
+  /// (0: every step).
+  double geometry_refresh = 0.0;
   // Implicit model.
   double solver_tolerance = 1e-8;
   unsigned solver_max_iterations = 2000;

@@ -131,10 +131,14 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   if (!(dt_s >= 0.0) || !std::isfinite(dt_s)) {
     throw std::invalid_argument("fluid: step with dt_s = " + std::to_string(dt_s));
   }
-  list_.update(k.position);
-  update_geometry(list_, kernel_, k.position, lucy_volume_, params_.volume_iterations, geo_);
-  counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
-                              k.position, radius_, sides_, boundary_, k.wall_segments);
+  if (geometry_stale(k.position, k.wall_segments)) {
+    list_.update(k.position);
+    update_geometry(list_, kernel_, k.position, lucy_volume_, params_.volume_iterations, geo_);
+    counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
+                                k.position, radius_, sides_, boundary_, k.wall_segments);
+    walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
+    ++geometry_updates_;
+  }
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.
@@ -180,6 +184,32 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   }
 }
 
+bool PorePressureModel::geometry_stale(std::span<const double> position,
+                                      std::span<const double> walls) const {
+  if (!(params_.geometry_refresh > 0.0) || position.size() != geo_.position.size() ||
+      walls.size() != walls_at_geometry_.size()) {
+    return true;
+  }
+  // Squared distances against (refresh h)^2: one pass, no square roots.
+  const double limit = params_.geometry_refresh * params_.h_m;
+  const double limit2 = limit * limit;
+  const double* x = position.data();
+  const double* x0 = geo_.position.data();
+  const auto n = static_cast<std::ptrdiff_t>(position.size() / 2);
+  double moved2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : moved2)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const double dx = x[2 * i] - x0[2 * i], dy = x[2 * i + 1] - x0[2 * i + 1];
+    moved2 = std::max(moved2, dx * dx + dy * dy);
+  }
+  for (std::size_t k = 0; k + 1 < walls.size(); k += 2) {  // both ends of every segment
+    const double dx = walls[k] - walls_at_geometry_[k];
+    const double dy = walls[k + 1] - walls_at_geometry_[k + 1];
+    moved2 = std::max(moved2, dx * dx + dy * dy);
+  }
+  return moved2 > limit2;
+}
+
 void PorePressureModel::output(const std::string& field, std::vector<double>& values) const {
   if (field == "pressure") {
     values.assign(pressure_.begin(), pressure_.end());
@@ -206,6 +236,7 @@ void PorePressureModel::scalars(std::vector<std::pair<std::string, double>>& out
   out.emplace_back("sealed_particles", static_cast<double>(counts_.sealed));
   out.emplace_back("cavitated_particles", static_cast<double>(cavitated_));
   out.emplace_back("neighbour_builds", static_cast<double>(list_.builds()));
+  out.emplace_back("geometry_updates", static_cast<double>(geometry_updates_));
   add_scalars(out);
 }
 

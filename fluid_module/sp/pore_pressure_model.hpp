@@ -9,6 +9,7 @@
 // clamp of eq. 22; the corrected gradient of the new pressure gives the force.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,8 @@ class PorePressureModel : public FluidModel {
   /// Solid fraction measured at initialise: sum(pi r^2) / sum(V) over interior particles.
   double packing_fraction() const { return packing_fraction_; }
   std::size_t cavitated() const { return cavitated_; }
+  /// How many times step() recomputed the SP geometry (see SpParams::geometry_refresh).
+  std::uint64_t geometry_updates() const { return geometry_updates_; }
 
  protected:
   /// The step limit of the model's own time integration of eq. 14 (stability or accuracy).
@@ -93,7 +96,13 @@ class PorePressureModel : public FluidModel {
   std::size_t cavitated_ = 0;
 
  private:
+  /// Whether a particle or wall end has moved more than geometry_refresh h since the geometry
+  /// was computed (always true with geometry_refresh 0 or a changed particle count).
+  bool geometry_stale(std::span<const double> position, std::span<const double> walls) const;
+
   double packing_fraction_ = 1.0;
+  std::vector<double> walls_at_geometry_;  // wall segments of the current geometry [m]
+  std::uint64_t geometry_updates_ = 0;
 };
 
 }  // namespace rockcut::fluid::sp

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "wire/spin_wait.hpp"
+
 namespace rockcut::wire {
 
 namespace {
@@ -33,6 +35,7 @@ void ModuleClient::receive(Message& reply, bool interruptible) {
   const auto deadline = clock::now() + timeout_;
   // Checked before waiting too: fast replies would otherwise never leave time to notice a signal.
   if (interruptible && hooks_.interrupted && hooks_.interrupted()) throw Interrupted();
+  spin_until_readable(socket_);
   for (;;) {
     zmq::pollitem_t item{socket_.handle(), 0, ZMQ_POLLIN, 0};
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - clock::now());

@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "wire/protocol.hpp"
+#include "wire/spin_wait.hpp"
 
 namespace rockcut::wire {
 
@@ -31,6 +32,7 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
   using clock = std::chrono::steady_clock;
   double busy_s = 0.0;  // handling time, reported in every reply's Envelope.busy_s
   for (;;) {
+    spin_until_readable(socket);
     request.receive(socket);
     const auto start = clock::now();
     reply.clear();

@@ -358,7 +358,8 @@ void DemSystem::full_step(double dt) {
   if (settings_.local_damping > 0) damping_force_.resize(3 * n);
   start_sums(threads);
   // Read before the region: a rebuild inside it resets both.
-  const double drift_before_m = max_drift_m_ + walls_.displacement_since_rebuild();
+  const double drift_before_m = max_drift_m_;
+  const double walls_moved_m = walls_.displacement_since_rebuild();
   bool rebuilt = false;
   double vmax2 = 0.0;
 #pragma omp parallel num_threads(threads) if (threads > 1)
@@ -370,7 +371,9 @@ void DemSystem::full_step(double dt) {
     // Every thread reaches the same decision from the same numbers.
     double v2 = 0.0;
     for (const ThreadSums& s : sums_) v2 = std::max(v2, s.vmax2);
-    if (has_pairs_ && drift_before_m + std::sqrt(v2) * dt > 0.5 * settings_.skin_m) {
+    // The split step's test with its order of additions (kick_drift, compute_internal_forces).
+    const double drift_m = drift_before_m + std::sqrt(v2) * dt;
+    if (has_pairs_ && drift_m + walls_moved_m > 0.5 * settings_.skin_m) {
 #pragma omp single
       {
         rebuild_neighbours();

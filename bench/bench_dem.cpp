@@ -19,16 +19,10 @@ namespace {
 std::string g_packing = ROCKCUT_SHARED_DIR "/bench/pack57k.txt";
 
 // The file lists the discs in random order; like LAMMPS (atom_modify sort) and the specimen
-// generator, the bench numbers them in cell order, cells of one largest diameter.
-rockcut::dem::Packing sorted(const rockcut::dem::Packing& p) {
-  double r_max = 0.0;
-  for (double r : p.radius_m) r_max = std::max(r_max, r);
-  return rockcut::dem::in_cell_order(p, 2.0 * r_max);
-}
-
-// The packing as read once, in cell order; each benchmark copies it.
+// generator, the bench numbers them in cell order. Read once; each benchmark copies it.
 const rockcut::dem::Packing& packing() {
-  static const rockcut::dem::Packing p = sorted(rockcut::dem::read_packing_file(g_packing));
+  static const rockcut::dem::Packing p =
+      rockcut::dem::in_cell_order(rockcut::dem::read_packing_file(g_packing));
   return p;
 }
 

@@ -74,6 +74,13 @@ ThreadSums DemSystem::total_sums() const {
   return total;
 }
 
+void DemSystem::book(const ThreadSums& s) {
+  ledger_.external_work_j += s.external_work_j;
+  ledger_.gravity_work_j += s.gravity_work_j;
+  ledger_.damping_j += s.damping_j;
+  ledger_.friction_j += s.friction_j;
+}
+
 void DemSystem::start_sums(int threads) {
   sums_.resize(static_cast<std::size_t>(threads));  // allocates only when the count grows
   for (ThreadSums& s : sums_) s = ThreadSums{};
@@ -213,9 +220,7 @@ void DemSystem::kick_drift(double dt, bool kick) {
     drift_range(p0, p1, dt, kick, /*reset_forces=*/false, sums_[t]);
   }
   const ThreadSums s = total_sums();
-  ledger_.external_work_j += s.external_work_j;
-  ledger_.gravity_work_j += s.gravity_work_j;
-  ledger_.damping_j += s.damping_j;
+  book(s);
   // A bound on how far any disc moved since the rebuild: sum of the largest step lengths.
   max_drift_m_ += std::sqrt(s.vmax2) * dt;
   walls_.move(dt);
@@ -261,7 +266,7 @@ void DemSystem::compute_internal_forces() {
   }
   if (!has_pairs_) return;
   const ThreadSums s = total_sums();
-  ledger_.friction_j += s.friction_j;
+  book(s);
   if (s.any_broken) remove_broken_bonds();
   if (!clamped_.empty()) hold_clamped_groups();
 }
@@ -323,10 +328,7 @@ void DemSystem::finish_forces(double kick_dt) {
     const auto [p0, p1] = share(n, t, threads);
     finish_range(p0, p1, kick_dt, sums_[t]);
   }
-  const ThreadSums s = total_sums();
-  ledger_.damping_j += s.damping_j;
-  ledger_.external_work_j += s.external_work_j;
-  ledger_.gravity_work_j += s.gravity_work_j;
+  book(total_sums());
   if (!clamped_.empty()) reset_clamped_velocities();
 }
 
@@ -361,7 +363,6 @@ void DemSystem::full_step(double dt) {
   const double drift_before_m = max_drift_m_;
   const double walls_moved_m = walls_.displacement_since_rebuild();
   bool rebuilt = false;
-  double vmax2 = 0.0;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     const int t = threads > 1 ? thread_id() : 0;
@@ -388,18 +389,14 @@ void DemSystem::full_step(double dt) {
 #pragma omp single
       hold_clamped_groups();
     }
-    if (t == 0) vmax2 = v2;
     finish_range(p0, p1, dt, sums_[t]);
   }
   const ThreadSums s = total_sums();
-  ledger_.external_work_j += s.external_work_j;
-  ledger_.gravity_work_j += s.gravity_work_j;
-  ledger_.damping_j += s.damping_j;
-  ledger_.friction_j += s.friction_j;
+  book(s);
   if (rebuilt) {
     max_drift_m_ = 0.0;
   } else {
-    max_drift_m_ += std::sqrt(vmax2) * dt;
+    max_drift_m_ += std::sqrt(s.vmax2) * dt;
   }
   if (s.any_broken) remove_broken_bonds();
   if (!clamped_.empty()) reset_clamped_velocities();

@@ -110,6 +110,8 @@ class DemSystem {
   void finish_range(std::size_t begin, std::size_t end, double kick_dt, ThreadSums& sums);
   void start_sums(int threads);
   ThreadSums total_sums() const;
+  /// Adds the work, damping and friction terms of `s` to the ledger.
+  void book(const ThreadSums& s);
   void remove_broken_bonds();
   /// Prescribed motion: the velocity of the field at the mid-step time t (replaces the kicks).
   void set_prescribed_velocity(double t);

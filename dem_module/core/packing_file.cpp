@@ -21,9 +21,10 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' |
 
 }  // namespace
 
-Packing in_cell_order(const Packing& packing, double cell_m) {
+Packing in_cell_order(const Packing& packing) {
   const std::size_t n = packing.size();
-  if (n == 0 || !(cell_m > 0)) return packing;
+  if (n == 0) return packing;
+  const double cell_m = 2.0 * *std::max_element(packing.radius_m.begin(), packing.radius_m.end());
   const auto [x_lo, x_hi] = std::minmax_element(packing.x_m.begin(), packing.x_m.end());
   const double y_lo = *std::min_element(packing.y_m.begin(), packing.y_m.end());
   const auto ncols = static_cast<std::int64_t>((*x_hi - *x_lo) / cell_m) + 1;

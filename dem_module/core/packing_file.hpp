@@ -15,12 +15,12 @@ namespace rockcut::dem {
 /// (not exactly three numbers), a non-finite value or a non-positive radius.
 Packing read_packing_file(const std::filesystem::path& path);
 
-/// The same discs renumbered in row-major cell order (rows of `cell_m` in y, cells of `cell_m` in x
-/// within a row; file order within a cell), the order generate_packing gives. Neighbours then sit
+/// The same discs renumbered in row-major cell order (rows of cells one largest diameter high in
+/// y, cells as wide in x within a row; file order within a cell), the order generate_packing gives. Neighbours then sit
 /// close in memory, and with OpenMP each thread's share of the pairs touches mostly its own share
 /// of the discs: on this machine a random order costs 1.8x in cache misses, and in two-thread
 /// runs the second core pulls the first one's force lines across.
-Packing in_cell_order(const Packing& packing, double cell_m);
+Packing in_cell_order(const Packing& packing);
 
 /// Throws std::runtime_error naming the path if it cannot be written.
 void write_packing_file(const std::filesystem::path& path, const Packing& packing);

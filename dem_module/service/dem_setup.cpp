@@ -83,14 +83,10 @@ Particles particles_from_scene(const rockcut::Dem& dem, std::string& report) {
       return make_lattice(spec);
     }
     case rockcut::Dem::kPackingFile:
-    {
       // The coupler makes a relative path absolute (relative to the scene file) before Init.
       // The discs are numbered in cell order, as the generator numbers them (in_cell_order).
-      const Packing read = read_packing_file(dem.packing_file().path());
-      double r_max = 0.0;
-      for (double r : read.radius_m) r_max = std::max(r_max, r);
-      return from_packing(in_cell_order(read, 2.0 * r_max), dem.density_kg_m3());
-    }
+      return from_packing(in_cell_order(read_packing_file(dem.packing_file().path())),
+                          dem.density_kg_m3());
     case rockcut::Dem::kSpecimen:
       return specimen_particles(dem.specimen(), dem.density_kg_m3(), report);
     case rockcut::Dem::PARTICLES_NOT_SET:

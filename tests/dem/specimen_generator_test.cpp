@@ -348,8 +348,8 @@ TEST(PackingFile, CellOrderIsARenumberingInRowsOfCells) {
     random.y_m.push_back(p.y_m[i]);
     random.radius_m.push_back(p.radius_m[i]);
   }
-  const double cell = 2.0 * brazilian_spec().radius_max_m;
-  const Packing sorted = in_cell_order(random, cell);
+  const Packing sorted = in_cell_order(random);
+  const double cell = 2.0 * *std::max_element(p.radius_m.begin(), p.radius_m.end());
   ASSERT_EQ(sorted.size(), p.size());
   auto key = [](const Packing& q, std::size_t i) {
     return std::tuple(q.x_m[i], q.y_m[i], q.radius_m[i]);

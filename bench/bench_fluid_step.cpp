@@ -1,10 +1,14 @@
 // bench_fluid_step: one fluid step of the SP pore-pressure models (fluid_module/sp/) on the
 // 58,000-disc benchmark packing ../shared/bench/pack57k.txt (0.2 m x 0.1 m, radii 0.2-0.4 mm,
-// Table 1's h = 1.5 mm: ~21 neighbours per particle), single-threaded as the module runs.
+// Table 1's h = 1.5 mm: ~23 listed neighbours per particle), on one thread (fluid.threads 1, the
+// default) unless a benchmark says otherwise.
 //
 //   explicit/static    forward Euler at its stability limit, particles at rest
 //   explicit/moving    the same while the block deforms (isochoric shear at 10 1/s): the
 //                      neighbour lists are rebuilt whenever a particle has moved half the skin
+//   explicit/reused    particles at rest with the scene default fluid.geometry_refresh_distance
+//                      (0.002 h): the geometry is computed once, so this is the step alone
+//                      (divergence with the Laplacian, update, adjoint force), on 1 and 2 threads
 //   implicit           backward Euler at 1, 20 and 100 times the explicit limit
 //   neighbour_build    the cell-list rebuild alone;  geometry  the per-step SP geometry alone
 // each with the particles numbered cell by cell (cell_ordered:1, as the specimen generator numbers
@@ -13,6 +17,7 @@
 // Counters: time/particle = wall time of one step per particle; particle-steps/s; for the
 // implicit model cg_iterations = conjugate-gradient iterations per step.
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -110,7 +115,10 @@ void per_particle(benchmark::State& state, std::size_t n) {
 }
 
 // state.range(0): 1 for the cell-ordered numbering, 0 for pack57k's own (random) order.
-void run(benchmark::State& state, sp::PorePressureModel& model, double dt, double strain_rate) {
+// `threads`: the OpenMP threads of the model's loops (fluid.threads).
+void run(benchmark::State& state, sp::PorePressureModel& model, double dt, double strain_rate,
+         int threads = 1) {
+  omp_set_num_threads(threads);
   const Packing& p = packing(state.range(0) != 0);
   const std::size_t n = p.radius.size();
   std::vector<double> x = p.position, d(2 * n, 0.0), v(2 * n, 0.0), force(2 * n);
@@ -148,6 +156,16 @@ void explicit_moving(benchmark::State& state) {
   run(state, m, m.dt_max_s(), 10.0);
 }
 
+// state.range(1): OpenMP threads (fluid.threads).
+void explicit_reused(benchmark::State& state) {
+  sp::SpParams p = params();
+  p.geometry_refresh = 0.002;
+  sp::ExplicitModel m(p);
+  run(state, m, m.dt_max_s(), 0.0, static_cast<int>(state.range(1)));
+  state.counters["geometry_updates/step"] =
+      static_cast<double>(m.geometry_updates()) / static_cast<double>(state.iterations());
+}
+
 // state.range(1): the step in multiples of the explicit limit.
 void implicit_step(benchmark::State& state) {
   sp::ImplicitModel m(params());
@@ -159,6 +177,7 @@ void implicit_step(benchmark::State& state) {
 void neighbour_build(benchmark::State& state) {
   const Packing& p = packing(state.range(0) != 0);
   sp::NeighbourList list(0.0015, 0.1);
+  omp_set_num_threads(1);
   for (auto _ : state) list.build(p.position);
   per_particle(state, p.radius.size());
 }
@@ -170,6 +189,7 @@ void geometry(benchmark::State& state) {
   sp::Geometry geo;
   const std::vector<double> lucy(p.radius.size(), 3e-7);
   const sp::WendlandC2 kernel(0.0015);
+  omp_set_num_threads(1);
   for (auto _ : state) sp::update_geometry(list, kernel, p.position, lucy, 3, geo);
   per_particle(state, p.radius.size());
 }
@@ -178,6 +198,8 @@ BENCHMARK(explicit_static)->Name("explicit/static")->ArgName("cell_ordered")->Ar
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(explicit_moving)->Name("explicit/moving")->ArgName("cell_ordered")->Arg(1)->Arg(0)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(explicit_reused)->Name("explicit/reused")->ArgNames({"cell_ordered", "threads"})
+    ->Args({1, 1})->Args({1, 2})->Unit(benchmark::kMillisecond);
 BENCHMARK(implicit_step)->Name("implicit")->ArgNames({"cell_ordered", "dt_x_explicit"})
     ->Args({1, 1})->Args({1, 20})->Args({1, 100})->Args({0, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(neighbour_build)->ArgName("cell_ordered")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);

@@ -94,7 +94,10 @@ void RunSession::exchange(unsigned steps, bool initial) {
   wire::FluidStep* fs = fluid_request_.envelope.mutable_fluid_step();
   fs->set_dt_s(initial ? 0.0 : steps * plan_.dt_s);
   fs->set_time_s(t);
-  if (!nodes_.empty()) {
+  // The fluid's scalars and pressure nodes only where this exchange is recorded (step 3).
+  const bool record = initial || record_due(kinematics.step(), t);
+  fs->set_report(record);
+  if (record && !nodes_.empty()) {
     const auto tip_x = kinematics.scalars().find("tool_tip_x_m");
     const auto tip_y = kinematics.scalars().find("tool_tip_y_m");
     if (tip_x == kinematics.scalars().end() || tip_y == kinematics.scalars().end()) {
@@ -114,7 +117,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
 
   // 3. DEM: total force at x^{n+N}, second half kick. When nothing is recorded at this step, the
   //    force rides on the next Advance instead: two round trips per exchange instead of three.
-  if (!initial && !record_due(kinematics.step(), t)) {
+  if (!record) {
     forces_held_ = true;
     step_ = kinematics.step();
     time_s_ = t;

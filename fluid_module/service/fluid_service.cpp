@@ -92,6 +92,9 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
   }
   m.step(s.dt_s(), s.time_s(), k, force_);
   wire::FluidResult* result = reply.envelope.mutable_fluid_result();
+  guard_not_finite(s.time_s(), k.position, *result);
+  reply.add_array(wire::field::kForce, force_, 2);
+  if (!s.report()) return;  // nothing records this exchange
   m.scalars(scalars_);
   for (const auto& [name, value] : scalars_) (*result->mutable_scalars())[name] = value;
   // Pressure nodes: averaged over the particle centres of this step.
@@ -104,8 +107,6 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
     (*result->mutable_scalars())["probe_" + p.name() + "_pa"] = mean;
     (*result->mutable_scalars())["probe_" + p.name() + "_particles"] = static_cast<double>(count);
   }
-  guard_not_finite(s.time_s(), k.position, *result);
-  reply.add_array(wire::field::kForce, force_, 2);
 }
 
 void FluidService::guard_not_finite(double time_s, std::span<const double> position,

@@ -10,7 +10,9 @@ namespace rockcut::fluid::sp {
 
 ExplicitModel::ExplicitModel(const SpParams& params)
     : PorePressureModel(params),
-      dt_max_s_(kExplicitStabilityC * params.h_m * params.h_m / diffusivity_m2_s_) {}
+      dt_max_s_(kExplicitStabilityC * params.h_m * params.h_m / diffusivity_m2_s_) {
+  laplacian_in_step_ = true;  // lap p^n comes with the divergence's pass over the pairs
+}
 
 StabilityLimit ExplicitModel::diffusion_limit() const {
   return {"explicit_diffusion", dt_max_s_,
@@ -29,7 +31,7 @@ void ExplicitModel::advance(double dt_s) {
         "x; shorten the fluid step (time.dt_s, coupling.interval) or use fluid.model: "
         "\"implicit\"");
   }
-  laplacian(list_, geo_, pressure_, work_);  // from p^n everywhere before any update
+  // laplacian_ = lap p^n everywhere, computed by step() before any update.
   const double p_min = params_.p_min_pa;
   const std::size_t n = pressure_.size();
 #pragma omp parallel for schedule(static)
@@ -38,7 +40,7 @@ void ExplicitModel::advance(double dt_s) {
       pressure_[i] = params_.p_hydro_pa;  // section 3.3: Dirichlet where the surface meets water
       continue;
     }
-    double rate = diffusivity_m2_s_ * work_[i] + source_[i];  // eq. 14
+    double rate = diffusivity_m2_s_ * laplacian_[i] + source_[i];  // eq. 14
     if (params_.cavitation) {
       // Eq. 22: at the clamp only increases pass; below p_min the pressure is held at p_min.
       if (pressure_[i] <= p_min) rate = std::max(rate, 0.0);

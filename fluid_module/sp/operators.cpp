@@ -29,90 +29,115 @@ void gradient(const NeighbourList& list, const Geometry& geo, std::span<const do
   }
 }
 
-void divergence(const NeighbourList& list, const Geometry& geo, std::span<const double> vel,
-                std::span<double> div) {
+namespace {
+
+// The rows of divergence() and laplacian(), alone or together (kDiv, kLap). Every sum has the same
+// terms in the same order whichever of the two is computed, so the fused call gives the bits of
+// the separate ones. (Two sets of accumulators for even and odd pairs, to shorten the chains of
+// dependent additions, made the pass 7 % slower: with SSE2's 16 registers the sums spill.)
+template <bool kDiv, bool kLap>
+void divergence_laplacian_rows(const NeighbourList& list, const Geometry& geo,
+                               std::span<const double> vel, std::span<const double> a,
+                               std::span<double> div, std::span<double> lap) {
   const int n = static_cast<int>(list.particles());
   const int* off = list.offsets().data();
   const int* nb = list.neighbours().data();
   const double* v = geo.volume.data();
+  const double* f = geo.f.data();
   const double* inv = geo.l_inverse.data();
   const double* x = geo.position.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    // G_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b; div = trace(G L^{-1}).
-    double gxx = 0.0, gxy = 0.0, gyx = 0.0, gyy = 0.0;
-    const double ux = vel[2 * i], uy = vel[2 * i + 1], xi = x[2 * i], yi = x[2 * i + 1];
+    // Divergence: G_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b with grad_i W_ij = -F_ij (x_j -
+    // x_i); div = trace(G L^{-1}). Laplacian (eq. 20): sum_j 2 V_j (a_i - a_j) F_ij.
+    double gxx = 0.0, gxy = 0.0, gyx = 0.0, gyy = 0.0, l = 0.0;
+    const double xi = x[2 * i], yi = x[2 * i + 1];
+    const double ux = kDiv ? vel[2 * i] : 0.0, uy = kDiv ? vel[2 * i + 1] : 0.0;
+    const double ai = kLap ? a[i] : 0.0;
     for (int k = off[i]; k < off[i + 1]; ++k) {
       const int j = nb[k];
-      const double s = -v[j] * geo.f[k];
-      const double du = vel[2 * j] - ux, dv = vel[2 * j + 1] - uy;
-      const double wx = s * (x[2 * j] - xi), wy = s * (x[2 * j + 1] - yi);
-      gxx += du * wx;
-      gxy += du * wy;
-      gyx += dv * wx;
-      gyy += dv * wy;
+      if constexpr (kDiv) {
+        const double s = -v[j] * f[k];
+        const double du = vel[2 * j] - ux, dv = vel[2 * j + 1] - uy;
+        const double wx = s * (x[2 * j] - xi), wy = s * (x[2 * j + 1] - yi);
+        gxx += du * wx;
+        gxy += du * wy;
+        gyx += dv * wx;
+        gyy += dv * wy;
+      }
+      if constexpr (kLap) l += v[j] * (ai - a[j]) * f[k];
     }
-    const double* m = inv + 3 * i;
-    div[i] = gxx * m[0] + (gxy + gyx) * m[1] + gyy * m[2];
+    if constexpr (kDiv) {
+      const double* m = inv + 3 * i;
+      div[i] = gxx * m[0] + (gxy + gyx) * m[1] + gyy * m[2];
+    }
+    if constexpr (kLap) lap[i] = 2.0 * l;
   }
 }
 
-void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
-                            std::span<const double> area, std::span<const double> q,
-                            std::span<double> force) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
-  const double* v = geo.volume.data();
-  const double* inv = geo.l_inverse.data();
-  const double* x = geo.position.data();
-  // The pair term A_i q_i B_ij, with B_ij = L_i^{-1} V_j grad_i W_ij and grad_i W_ij =
-  // -F_ij (x_j - x_i), pushes j and pulls i back. Gathered per particle over its (symmetric) row:
-  // F_i = sum_j (A_j q_j B_ji - A_i q_i B_ij), so threads write only their own particles.
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const double aqi = area[i] * q[i];
-    const double xi = x[2 * i], yi = x[2 * i + 1];
-    const double* mi = inv + 3 * i;
-    double fx = 0.0, fy = 0.0;
-    for (int k = off[i]; k < off[i + 1]; ++k) {
-      const int j = nb[k];
-      const double dx = x[2 * j] - xi, dy = x[2 * j + 1] - yi;  // x_j - x_i
-      // B_ij on i: -(A_i q_i) L_i^{-1} V_j (-F_ij) (x_j - x_i).
-      const double si = -aqi * v[j] * geo.f[k];
-      const double gxi = si * dx, gyi = si * dy;
-      fx -= mi[0] * gxi + mi[1] * gyi;
-      fy -= mi[1] * gxi + mi[2] * gyi;
-      // B_ji on i: (A_j q_j) L_j^{-1} V_i (-F_ji) (x_i - x_j), F_ji = F_ij.
-      const double aqj = area[j] * q[j];
-      if (aqj != 0.0) {
-        const double* mj = inv + 3 * j;
-        const double sj = aqj * v[i] * geo.f[k];  // -(-F) with (x_i - x_j) = -(dx, dy)
-        const double gxj = sj * dx, gyj = sj * dy;
-        fx += mj[0] * gxj + mj[1] * gyj;
-        fy += mj[1] * gxj + mj[2] * gyj;
-      }
-    }
-    force[2 * i] = fx;
-    force[2 * i + 1] = fy;
-  }
+}  // namespace
+
+void divergence(const NeighbourList& list, const Geometry& geo, std::span<const double> vel,
+                std::span<double> div) {
+  divergence_laplacian_rows<true, false>(list, geo, vel, {}, div, {});
 }
 
 void laplacian(const NeighbourList& list, const Geometry& geo, std::span<const double> a,
                std::span<double> lap) {
+  divergence_laplacian_rows<false, true>(list, geo, {}, a, {}, lap);
+}
+
+void divergence_laplacian(const NeighbourList& list, const Geometry& geo,
+                          std::span<const double> vel, std::span<const double> a,
+                          std::span<double> div, std::span<double> lap) {
+  divergence_laplacian_rows<true, true>(list, geo, vel, a, div, lap);
+}
+
+void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
+                            std::span<const double> area, std::span<const double> q,
+                            std::span<double> force, std::span<double> work) {
   const int n = static_cast<int>(list.particles());
   const int* off = list.offsets().data();
   const int* nb = list.neighbours().data();
   const double* v = geo.volume.data();
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    double s = 0.0;
-    const double ai = a[i];
-    for (int k = off[i]; k < off[i + 1]; ++k) {
-      const int j = nb[k];
-      s += v[j] * (ai - a[j]) * geo.f[k];
+  const double* inv = geo.l_inverse.data();
+  const double* x = geo.position.data();
+  const double* f = geo.f.data();
+  double* p = work.data();
+  // F_i = sum_j (A_j q_j B_ji - A_i q_i B_ij) with B_ij = -V_j F_ij L_i^{-1} (x_j - x_i), the
+  // per-pair sums gathered over i's (symmetric) row so that threads write only their own
+  // particles. Both terms factor into per-particle quantities and two sums over the row:
+  //   sum_j A_i q_i B_ij = -A_i q_i L_i^{-1} S1_i,   S1_i = sum_j F_ij V_j (x_j - x_i),
+  //   sum_j A_j q_j B_ji =  V_i S2_i,                 S2_i = sum_j F_ij P_j (x_j - x_i),
+  // with P_j = A_j q_j L_j^{-1} computed first. The pair loop then does 13 flops instead of 30.
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      const double aq = area[i] * q[i];
+      const double* m = inv + 3 * i;
+      p[3 * i] = aq * m[0];
+      p[3 * i + 1] = aq * m[1];
+      p[3 * i + 2] = aq * m[2];
     }
-    lap[i] = 2.0 * s;
+    // (the implied barrier: every P_j is written before any row reads it)
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      const double xi = x[2 * i], yi = x[2 * i + 1];
+      double s1x = 0.0, s1y = 0.0, s2x = 0.0, s2y = 0.0;
+      for (int k = off[i]; k < off[i + 1]; ++k) {
+        const int j = nb[k];
+        const double fx = f[k] * (x[2 * j] - xi), fy = f[k] * (x[2 * j + 1] - yi);
+        s1x += v[j] * fx;
+        s1y += v[j] * fy;
+        const double* pj = p + 3 * j;
+        s2x += pj[0] * fx + pj[1] * fy;
+        s2y += pj[1] * fx + pj[2] * fy;
+      }
+      const double* pi = p + 3 * i;  // A_i q_i L_i^{-1}
+      force[2 * i] = (pi[0] * s1x + pi[1] * s1y) + v[i] * s2x;
+      force[2 * i + 1] = (pi[1] * s1x + pi[2] * s1y) + v[i] * s2y;
+    }
   }
 }
 

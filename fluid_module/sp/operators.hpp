@@ -29,10 +29,11 @@ void divergence(const NeighbourList& list, const Geometry& geo, std::span<const 
 /// stored energy E = sum_i A_i q_i^2 / (2 alpha M) when q_i = -alpha M div_i(u): the coupled
 /// DEM-fluid system then conserves E plus the grains' energy (diffusion, drainage and the
 /// cavitation clamp only take energy out). Inside, it approximates -A_k grad q_k (the symmetric
-/// SPH form); its forces sum to zero. `force` gets 2 values per particle (overwritten).
+/// SPH form); its forces sum to zero. `force` gets 2 values per particle (overwritten); `work`
+/// is scratch of 3 values per particle (A_i q_i L_i^{-1}).
 void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
                             std::span<const double> area, std::span<const double> q,
-                            std::span<double> force);
+                            std::span<double> force, std::span<double> work);
 
 /// The Cleary & Monaghan (Brookshaw) Laplacian of eq. 20 for a uniform coefficient, with the SP
 /// volume V_j in place of m_j / rho_i:
@@ -41,6 +42,12 @@ void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
 /// surfaces (section 3.3).
 void laplacian(const NeighbourList& list, const Geometry& geo, std::span<const double> a,
                std::span<double> lap);
+
+/// divergence(vel) into `div` and laplacian(a) into `lap` in one pass over the pairs, with the
+/// same bits as the two calls (the explicit model's step needs both on the same geometry).
+void divergence_laplacian(const NeighbourList& list, const Geometry& geo,
+                          std::span<const double> vel, std::span<const double> a,
+                          std::span<double> div, std::span<double> lap);
 
 /// CSPM interpolation (eq. 15) with the first-order term of Chen et al. (1999):
 ///   a*_i = [sum_j V_j a_j W_ij - grad a_i . sum_j V_j (x_j - x_i) W_ij] / sum_j V_j W_ij,

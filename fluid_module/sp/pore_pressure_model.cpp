@@ -116,7 +116,8 @@ void PorePressureModel::initialise(const StaticData& data) {
   share_.assign(n, 0.0);
   area_.resize(n);
   for (std::size_t i = 0; i < n; ++i) area_[i] = std::numbers::pi * radius_[i] * radius_[i];
-  work_.assign(2 * n, 0.0);
+  work_.assign(3 * n, 0.0);
+  laplacian_.assign(n, 0.0);
   grad_.assign(2 * n, 0.0);
   boundary_.assign(n, Boundary::interior);
   counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
@@ -142,13 +143,16 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.
-    if (params_.strain_from == StrainFrom::displacement) {
-      check_size(k.displacement, 2 * n, "displacement");
-      divergence(list_, geo_, k.displacement, strain_rate_);
-      for (double& e : strain_rate_) e /= dt_s;
+    const bool from_displacement = params_.strain_from == StrainFrom::displacement;
+    const std::span<const double> field = from_displacement ? k.displacement : k.velocity_half;
+    check_size(field, 2 * n, from_displacement ? "displacement" : "velocity_half");
+    if (laplacian_in_step_) {
+      divergence_laplacian(list_, geo_, field, pressure_, strain_rate_, laplacian_);
     } else {
-      check_size(k.velocity_half, 2 * n, "velocity_half");
-      divergence(list_, geo_, k.velocity_half, strain_rate_);
+      divergence(list_, geo_, field, strain_rate_);
+    }
+    if (from_displacement) {
+      for (double& e : strain_rate_) e /= dt_s;
     }
     const double am = params_.alpha * params_.bulk_modulus_pa;
     for (std::size_t i = 0; i < n; ++i) source_[i] = -am * strain_rate_[i];
@@ -173,7 +177,7 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
       excess_[i] = pressure_[i] - params_.p_hydro_pa;
       share_[i] = packing_fraction_ * geo_.volume[i];
     }
-    adjoint_pressure_force(list_, geo_, share_, excess_, force);
+    adjoint_pressure_force(list_, geo_, share_, excess_, force, work_);
     return;
   }
   // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].

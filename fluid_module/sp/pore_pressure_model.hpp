@@ -77,7 +77,8 @@ class PorePressureModel : public FluidModel {
   /// The step limit of the model's own time integration of eq. 14 (stability or accuracy).
   virtual StabilityLimit diffusion_limit() const = 0;
   /// Advances pressure_ by dt with the source -alpha M strain_rate_ (Pa/s), holding drained
-  /// particles at p_hydro and clamping by eq. 22. Called once per step with dt > 0.
+  /// particles at p_hydro and clamping by eq. 22. Called once per step with dt > 0; with
+  /// laplacian_in_step_ set, laplacian_ then holds the eq. 20 Laplacian of pressure_.
   virtual void advance(double dt_s) = 0;
   /// Model-specific scalars appended to the common ones.
   virtual void add_scalars(std::vector<std::pair<std::string, double>>&) const {}
@@ -88,7 +89,12 @@ class PorePressureModel : public FluidModel {
   NeighbourList list_;
   Geometry geo_;
   std::vector<double> radius_, lucy_volume_;
-  std::vector<double> pressure_, strain_rate_, source_, work_, grad_;
+  std::vector<double> pressure_, strain_rate_, source_, grad_;
+  std::vector<double> work_;  // scratch, 3 per particle (adjoint_pressure_force)
+  /// Set by a model whose advance() needs lap p^n (the explicit one): step() then computes it in
+  /// the divergence's pass over the pairs (divergence_laplacian), into laplacian_ [Pa/m^2].
+  bool laplacian_in_step_ = false;
+  std::vector<double> laplacian_;
   std::vector<double> excess_, area_, share_;  // p - p_hydro [Pa]; pi r^2, phi V [m^2]
   std::vector<Boundary> boundary_;
   Sides sides_;

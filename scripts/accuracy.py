@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Work-precision study of coupled cutting (docs/accuracy.md): error against wall time.
 
-  scripts/accuracy [--jobs N] [--out DIR] [--seeds 1,2] [--plot-only] [--coupler PATH]
+  scripts/accuracy [--jobs N] [--out DIR] [--seeds 1,2,3,4] [--plot-only] [--coupler PATH]
 
 On cases/cutting/saturated_reduced.pbtxt, cut short to 24 mm (steady from 10 mm), four ladders
 vary one setting each from the defaults:
@@ -187,7 +187,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "accuracy"))
-    ap.add_argument("--seeds", default="1,2")
+    ap.add_argument("--seeds", default="1,2,3,4")
     ap.add_argument("--plot-only", action="store_true")
     ap.add_argument("--coupler", default=os.path.join(ROOT, "build", "bin", "coupler"))
     a = ap.parse_args()

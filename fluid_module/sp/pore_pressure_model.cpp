@@ -113,7 +113,7 @@ void PorePressureModel::initialise(const StaticData& data) {
   strain_rate_.assign(n, 0.0);
   source_.assign(n, 0.0);
   excess_.assign(n, 0.0);
-  share_.assign(n, 0.0);
+  update_share();
   area_.resize(n);
   for (std::size_t i = 0; i < n; ++i) area_[i] = std::numbers::pi * radius_[i] * radius_[i];
   work_.assign(3 * n, 0.0);
@@ -138,6 +138,7 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
                                 k.position, radius_, sides_, boundary_, k.wall_segments);
     walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
+    update_share();
     ++geometry_updates_;
   }
 
@@ -170,13 +171,8 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   }
 
   if (params_.force_form == ForceForm::adjoint) {
-    // The area the excess pressure acts on: the grains' share phi V_i of the SP volume (phi the
-    // solid fraction measured at initialise), smooth where pi r_i^2 jumps from grain to grain.
-    // Summed over the grains it is sum pi r^2, as in eq. 21.
-    for (std::size_t i = 0; i < n; ++i) {
-      excess_[i] = pressure_[i] - params_.p_hydro_pa;
-      share_[i] = packing_fraction_ * geo_.volume[i];
-    }
+    // The excess pressure acts on share_ (update_share).
+    for (std::size_t i = 0; i < n; ++i) excess_[i] = pressure_[i] - params_.p_hydro_pa;
     adjoint_pressure_force(list_, geo_, share_, excess_, force, work_);
     return;
   }
@@ -186,6 +182,14 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     force[2 * i] = -grad_[2 * i] * area_[i];
     force[2 * i + 1] = -grad_[2 * i + 1] * area_[i];
   }
+}
+
+void PorePressureModel::update_share() {
+  // The area the excess pressure acts on: the grains' share phi V_i of the SP volume (phi the
+  // solid fraction measured at initialise), smooth where pi r_i^2 jumps from grain to grain.
+  // Summed over the grains it is sum pi r^2, as in eq. 21. It changes only with the geometry.
+  share_.resize(geo_.volume.size());
+  for (std::size_t i = 0; i < share_.size(); ++i) share_[i] = packing_fraction_ * geo_.volume[i];
 }
 
 bool PorePressureModel::geometry_stale(std::span<const double> position,

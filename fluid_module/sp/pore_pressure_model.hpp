@@ -95,7 +95,8 @@ class PorePressureModel : public FluidModel {
   /// the divergence's pass over the pairs (divergence_laplacian), into laplacian_ [Pa/m^2].
   bool laplacian_in_step_ = false;
   std::vector<double> laplacian_;
-  std::vector<double> excess_, area_, share_;  // p - p_hydro [Pa]; pi r^2, phi V [m^2]
+  std::vector<double> excess_, area_;  // p - p_hydro [Pa]; pi r^2 [m^2]
+  std::vector<double> share_;          // phi V_i [m^2], set with the geometry (update_share)
   std::vector<Boundary> boundary_;
   Sides sides_;
   BoundaryCounts counts_;
@@ -105,6 +106,8 @@ class PorePressureModel : public FluidModel {
   /// Whether a particle or wall end has moved more than geometry_refresh h since the geometry
   /// was computed (always true with geometry_refresh 0 or a changed particle count).
   bool geometry_stale(std::span<const double> position, std::span<const double> walls) const;
+  /// share_ = phi V_i for the current geometry: the area the excess pressure acts on.
+  void update_share();
 
   double packing_fraction_ = 1.0;
   std::vector<double> walls_at_geometry_;  // wall segments of the current geometry [m]

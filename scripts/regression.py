@@ -101,7 +101,7 @@ def check(name, coupler):
     return 0
 
 
-def spread(names, coupler, seeds, threads, jobs):
+def measure(names, coupler, seeds, threads, jobs):
     for name in names:
         case = load_case(name)
         variants = [("dem.specimen.seed=%d" % s, "dem.threads=%d" % t) for s in seeds for t in threads]
@@ -145,7 +145,7 @@ def main():
     try:
         if args.command == "check":
             return max(check(n, args.coupler) for n in names)
-        return spread(names, args.coupler, [int(s) for s in args.seeds.split(",")],
+        return measure(names, args.coupler, [int(s) for s in args.seeds.split(",")],
                       [int(t) for t in args.threads.split(",")], args.jobs)
     except RuntimeError as e:
         print("regression: " + str(e), file=sys.stderr)

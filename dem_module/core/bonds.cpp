@@ -54,8 +54,6 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
   const std::uint32_t* bj = j_.data();
   const double* rest = rest_length_.data();
   double* shear = shear_force_.data();
-  double* f = out.force;
-  double* q = out.torque;
   const double kn = law_.normal_stiffness_n_m, ks_dt = law_.shear_stiffness_n_m * dt;
   const double tn = law_.tensile_strength_n, ts = law_.shear_strength_n;
   bool broke = false;
@@ -82,12 +80,14 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
     }
     shear[k] = fs;
     const double fx = fn * nx - fs * ny, fy = fn * ny + fs * nx;  // on j
-    f[2 * i] -= fx;
-    f[2 * i + 1] -= fy;
-    f[2 * j] += fx;
-    f[2 * j + 1] += fy;
-    q[i] -= fs * r[i];
-    q[j] -= fs * r[j];
+    double* fi = out.force_for(i);  // the particle arrays, or this thread's buffer
+    double* fj = out.force_for(j);
+    fi[2 * i] -= fx;
+    fi[2 * i + 1] -= fy;
+    fj[2 * j] += fx;
+    fj[2 * j + 1] += fy;
+    out.torque_for(i)[i] -= fs * r[i];
+    out.torque_for(j)[j] -= fs * r[j];
   }
   if (broke) any_broken = true;
 }

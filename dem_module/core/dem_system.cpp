@@ -58,6 +58,41 @@ void DemSystem::rebuild_neighbours() {
   if (!walls_.empty()) walls_.rebuild(particles_, settings_.skin_m);
   max_drift_m_ = 0.0;
   ++rebuilds_;
+  update_force_windows();
+}
+
+void DemSystem::update_force_windows() {
+  const int threads = settings_.threads;
+  const std::size_t n = particles_.size();
+  buffers_.resize(threads, n);
+  if (threads < 2) return;
+  for (int t = 0; t < threads; ++t) {
+    const auto [p0, p1] = share(n, t, threads);
+    std::size_t lo = n, hi = 0;
+    auto note = [&](std::uint32_t i) {
+      if (i < p0 || i >= p1) {
+        lo = std::min<std::size_t>(lo, i);
+        hi = std::max<std::size_t>(hi, std::size_t(i) + 1);
+      }
+    };
+    // The same shares as pair_forces().
+    const auto [b0, b1] = share(bonds_.size(), t, threads);
+    for (std::size_t k = b0; k < b1; ++k) {
+      note(bonds_.first(k));
+      note(bonds_.second(k));
+    }
+    if (settings_.contact.normal_stiffness_n_m > 0) {
+      const auto [c0, c1] = share(contacts_.size(), t, threads);
+      for (std::size_t k = c0; k < c1; ++k) {
+        note(contacts_.first(k));
+        note(contacts_.second(k));
+      }
+    }
+    if (t == 0) {
+      for (std::uint32_t i : walls_.listed_particles()) note(i);
+    }
+    buffers_.set_window(t, lo, hi);
+  }
 }
 
 ThreadSums DemSystem::total_sums() const {
@@ -144,15 +179,16 @@ void DemSystem::reset_forces_range(std::size_t begin, std::size_t end) {
 }
 
 void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
-  const ForceView out = buffers_.view(t, particles_);
+  const auto [p0, p1] = share(particles_.size(), t, threads);
+  const ForceView out = buffers_.view(t, particles_, p0, p1);
   const auto [b0, b1] = share(bonds_.size(), t, threads);
   bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken);
   if (settings_.contact.normal_stiffness_n_m > 0) {
     const auto [c0, c1] = share(contacts_.size(), t, threads);
     contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, sums.friction_j);
   }
-  // The walls add into thread 0's view, the particle arrays themselves; the ledger is written by
-  // this thread alone inside the region.
+  // Thread 0 adds the walls, through its view like its pairs; the ledger is written by this
+  // thread alone inside the region.
   if (t == 0 && !walls_.empty()) {
     walls_.compute(particles_, settings_.contact, dt, out, ledger_.boundary_work_j,
                    ledger_.friction_j);
@@ -248,7 +284,6 @@ void DemSystem::compute_internal_forces() {
     rebuild_neighbours();
   }
   const int threads = has_pairs_ ? settings_.threads : 1;
-  if (has_pairs_) buffers_.resize(threads, n);
   start_sums(threads);
   const double dt = dt_last_;
   // One parallel region per force evaluation: reset, pair loops, reduction, with barriers between.
@@ -261,7 +296,7 @@ void DemSystem::compute_internal_forces() {
 #pragma omp barrier
       pair_forces(t, threads, dt, sums_[t]);
 #pragma omp barrier
-      buffers_.reduce(particles_, p0, p1);
+      buffers_.reduce(particles_, t, p0, p1);
     }
   }
   if (!has_pairs_) return;
@@ -276,6 +311,7 @@ void DemSystem::remove_broken_bonds() {
   bonds_.remove_broken(particles_, time_s_, settings_.contact.normal_stiffness_n_m, breaks_,
                        freed_pairs_, ledger_);
   if (settings_.contact.normal_stiffness_n_m > 0) contacts_.add_pairs(freed_pairs_);
+  update_force_windows();  // the shares of the lists have moved
 }
 
 std::size_t DemSystem::add_clamped_group(std::vector<std::uint32_t> particles,
@@ -356,7 +392,6 @@ void DemSystem::full_step(double dt) {
   time_s_ += dt;
   ++steps_;
   walls_.move(dt);  // the walls do not depend on the discs: moved before the region
-  buffers_.resize(threads, n);
   if (settings_.local_damping > 0) damping_force_.resize(3 * n);
   start_sums(threads);
   // Read before the region: a rebuild inside it resets both.
@@ -383,7 +418,7 @@ void DemSystem::full_step(double dt) {
     }
     pair_forces(t, threads, dt, sums_[t]);
 #pragma omp barrier
-    buffers_.reduce(particles_, p0, p1);
+    buffers_.reduce(particles_, t, p0, p1);
     if (!clamped_.empty()) {
 #pragma omp barrier
 #pragma omp single

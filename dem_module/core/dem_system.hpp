@@ -121,6 +121,9 @@ class DemSystem {
   /// Copies the fluid force into the held external force.
   void hold_external_force(std::span<const double> external);
   void rebuild_neighbours();
+  /// Sizes the force buffers and sets each thread's window of foreign particles from its share of
+  /// the pair lists: after every change of the lists (rebuild, removed bonds).
+  void update_force_windows();
   /// Takes the internal y force off the clamped discs into their groups' reactions and books the
   /// work the clamps do (trapezoid over the step) as boundary work.
   void hold_clamped_groups();

@@ -1,8 +1,13 @@
-// Per-thread force accumulation for the pair loops. Thread 0 adds straight into the particle
-// arrays; other threads into private buffers that are summed afterwards. No atomics, no races, and
-// one thread pays nothing extra.
+// Per-thread force accumulation for the pair loops, split by ownership. Thread t owns the particles
+// of its static share and adds their forces straight into the particle arrays; a pair's share for a
+// particle another thread owns goes into t's own buffer instead. Those foreign entries lie near the
+// shares' borders (the particles are numbered in cell order), so the reduction afterwards only
+// walks each buffer's window of touched entries. No atomics, no races, and one thread pays nothing
+// extra.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/particles.hpp"
@@ -10,8 +15,15 @@
 namespace rockcut::dem {
 
 struct ForceView {
-  double* force;   ///< interleaved x, y
+  double* force;         ///< the particle arrays (interleaved x, y) for owned particles
   double* torque;
+  double* other_force;   ///< this thread's buffer for particles other threads own
+  double* other_torque;
+  std::size_t own_begin = 0, own_count = 0;  ///< the owned particles [own_begin, own_begin + own_count)
+
+  bool owns(std::uint32_t i) const { return std::size_t(i) - own_begin < own_count; }  // wraps below
+  double* force_for(std::uint32_t i) const { return owns(i) ? force : other_force; }
+  double* torque_for(std::uint32_t i) const { return owns(i) ? torque : other_torque; }
 };
 
 class ForceBuffers {
@@ -19,13 +31,18 @@ class ForceBuffers {
   /// Sizes the buffers for `threads` threads and n particles; new buffers are zero, and reduce()
   /// leaves them zero again (allocates only when the size changes).
   void resize(int threads, std::size_t n);
-  ForceView view(int thread, Particles& p);
-  /// Adds every private buffer into the particle arrays for particles [begin, end), and zeroes
-  /// those buffer entries.
-  void reduce(Particles& p, std::size_t begin, std::size_t end);
+  /// The view of thread t, which owns particles [own_begin, own_end).
+  ForceView view(int thread, Particles& p, std::size_t own_begin, std::size_t own_end);
+  /// Sets the window [begin, end) of foreign particles that thread t's pairs touch; reduce() reads
+  /// only these entries. Called whenever the pair lists or their shares change.
+  void set_window(int thread, std::size_t begin, std::size_t end);
+  /// Adds the other threads' buffers into the particle arrays for the owned particles
+  /// [begin, end) of thread t, and zeroes those buffer entries.
+  void reduce(Particles& p, int thread, std::size_t begin, std::size_t end);
 
  private:
   std::vector<std::vector<double>> force_, torque_;
+  std::vector<std::size_t> window_begin_, window_end_;
 };
 
 }  // namespace rockcut::dem

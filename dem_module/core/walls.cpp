@@ -131,9 +131,10 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     }
     shear_force_[k] = fs;
     const double fx = fn * nx + fs * tx, fy = fn * ny + fs * ty;  // on the disc
-    out.force[2 * i] += fx;
-    out.force[2 * i + 1] += fy;
-    out.torque[i] -= fs * r;
+    double* fi = out.force_for(i);  // the particle arrays, or this thread's buffer
+    fi[2 * i] += fx;
+    fi[2 * i + 1] += fy;
+    out.torque_for(i)[i] -= fs * r;
     b.force_x -= fx;
     b.force_y -= fy;
   }

@@ -39,6 +39,8 @@ class WallSet {
   /// Gives body `body` its own friction coefficient (>= 0) instead of the contact law's.
   void set_friction(std::uint32_t body, double friction) { bodies_.at(body).friction = friction; }
   const std::vector<Segment>& segments() const { return segments_; }
+  /// The discs of the listed (disc, segment) pairs, in list order.
+  const std::vector<std::uint32_t>& listed_particles() const { return particle_; }
 
   /// Moves every body by its velocity over dt.
   void move(double dt);

@@ -5,9 +5,9 @@
 #include "wire/module_main.hpp"
 
 int main(int argc, char** argv) {
-  // Idle OpenMP threads sleep instead of spinning: the DEM process shares the cores and works
-  // while this one waits. OMP_WAIT_POLICY in the environment still wins.
-  setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
+  // The OpenMP wait policy is not set here: libgomp reads OMP_WAIT_POLICY when it is loaded,
+  // before main. The coupler puts OMP_WAIT_POLICY=PASSIVE in the environment of the module
+  // processes it starts (coupler/cli/main.cpp); started by hand, set it yourself.
   rockcut::fluid::FluidService service;
   return rockcut::wire::module_main(argc, argv, service);
 }

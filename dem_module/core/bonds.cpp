@@ -61,9 +61,13 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
     const std::uint32_t i = bi[k], j = bj[k];
     const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
     const double d2 = dx * dx + dy * dy;
-    const double inv_len = 1.0 / std::sqrt(d2);
+    const double len = std::sqrt(d2);
+    const double inv_len = 1.0 / len;
     const double nx = dx * inv_len, ny = dy * inv_len;  // t = (-ny, nx)
-    const double fn = kn * (rest[k] - d2 * inv_len);     // compression positive
+    // Compression positive. The length is the one install() stored as the rest length, bit for
+    // bit, so a bond at rest pulls with exactly zero force (d2 * inv_len differs from it in the
+    // last bit: round-off forces that then moved a relaxed block and did work on no ledger).
+    const double fn = kn * (rest[k] - len);
     // Tangential velocity of j's contact point relative to i's, rotation included.
     const double vt = -(v[2 * j] - v[2 * i]) * ny + (v[2 * j + 1] - v[2 * i + 1]) * nx -
                       w[i] * r[i] - w[j] * r[j];

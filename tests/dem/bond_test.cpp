@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/dem_system.hpp"
+#include "core/specimen_generator.hpp"
 #include "dem/dem_test_support.hpp"
 
 namespace rockcut::dem {
@@ -103,6 +104,47 @@ TEST(Bond, InstallationBondsTouchingPairsOnly) {
   // A 6 x 5 hexagonal block: 5 bonds per row along x (25), and between consecutive rows each disc
   // touches two above except at the row ends: 4 row gaps * (2 * 6 - 1) = 44.
   EXPECT_EQ(b.size(), 25u + 44u);
+}
+
+}  // namespace
+}  // namespace rockcut::dem
+
+namespace rockcut::dem {
+namespace {
+
+TEST(Bond, BondedBlockAtRestStaysExactlyAtRest) {
+  // A generated packing bonded where it touches: every bond sits at its rest length, so every
+  // force is exactly zero and nothing may move, not even by round-off. The bond force must use
+  // the same length arithmetic as the rest length it was installed with; the older
+  // rest - d^2 / sqrt(d^2) differed in the last bit and set a relaxed block in motion (kinetic
+  // energy ~1e-23 J/m after 570 steps of the reduced scene) with no work on any ledger.
+  PackingSpec spec;
+  spec.region.width_m = 0.02;
+  spec.region.height_m = 0.01;
+  spec.radius_min_m = 2e-4;
+  spec.radius_max_m = 4e-4;
+  spec.seed = 7;
+  const Packing packing = generate_packing(spec);
+  Particles p;
+  for (std::size_t i = 0; i < packing.size(); ++i) {
+    p.add(packing.x_m[i], packing.y_m[i], packing.radius_m[i], 2650);
+  }
+  CellGrid grid;
+  BondSet bonds = BondSet::install(p, test::table1_bond(), 1e-9, grid);
+  ASSERT_GT(bonds.size(), packing.size()) << "the test needs a bonded block";
+  for (int threads : {1, 2}) {
+    DemSettings s;
+    s.contact = {1e10, 2.5e10, 0.5};
+    s.local_damping = 0.7;
+    s.threads = threads;
+    DemSystem block(p, s, bonds);
+    for (int k = 0; k < 2000; ++k) block.step(5e-8);
+    for (double f : block.particles().force) ASSERT_EQ(f, 0.0) << threads << " threads";
+    for (double v : block.particles().velocity) ASSERT_EQ(v, 0.0) << threads << " threads";
+    EXPECT_EQ(block.kinetic_energy(), 0.0);
+    EXPECT_EQ(block.strain_energy(), 0.0);
+    EXPECT_EQ(block.ledger().damping_j, 0.0);
+  }
 }
 
 }  // namespace

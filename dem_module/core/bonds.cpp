@@ -84,14 +84,7 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
     }
     shear[k] = fs;
     const double fx = fn * nx - fs * ny, fy = fn * ny + fs * nx;  // on j
-    double* fi = out.force_for(i);  // the particle arrays, or this thread's buffer
-    double* fj = out.force_for(j);
-    fi[2 * i] -= fx;
-    fi[2 * i + 1] -= fy;
-    fj[2 * j] += fx;
-    fj[2 * j + 1] += fy;
-    out.torque_for(i)[i] -= fs * r[i];
-    out.torque_for(j)[j] -= fs * r[j];
+    out.add_pair(i, j, fx, fy, -fs * r[i], -fs * r[j]);
   }
   if (broke) any_broken = true;
 }

@@ -94,14 +94,7 @@ void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
     }
     shear_force_[k] = fs;
     const double fx = fn * nx + fs * tx, fy = fn * ny + fs * ty;  // on j
-    double* fi = out.force_for(i);  // the particle arrays, or this thread's buffer
-    double* fj = out.force_for(j);
-    fi[2 * i] -= fx;
-    fi[2 * i + 1] -= fy;
-    fj[2 * j] += fx;
-    fj[2 * j + 1] += fy;
-    out.torque_for(i)[i] -= fs * r[i];
-    out.torque_for(j)[j] -= fs * r[j];
+    out.add_pair(i, j, fx, fy, -fs * r[i], -fs * r[j]);
   }
   friction_j += friction;
 }

@@ -22,8 +22,22 @@ struct ForceView {
   std::size_t own_begin = 0, own_count = 0;  ///< the owned particles [own_begin, own_begin + own_count)
 
   bool owns(std::uint32_t i) const { return std::size_t(i) - own_begin < own_count; }  // wraps below
-  double* force_for(std::uint32_t i) const { return owns(i) ? force : other_force; }
-  double* torque_for(std::uint32_t i) const { return owns(i) ? torque : other_torque; }
+
+  /// Adds force (fx, fy) and moment q to particle i: into the particle arrays if this thread
+  /// owns it, into this thread's buffer if not.
+  void add(std::uint32_t i, double fx, double fy, double q) const {
+    const bool own = owns(i);
+    double* f = own ? force : other_force;
+    f[2 * i] += fx;
+    f[2 * i + 1] += fy;
+    (own ? torque : other_torque)[i] += q;
+  }
+  /// A pair's forces: (fx, fy) on j, its opposite on i, and the moments q_i, q_j.
+  void add_pair(std::uint32_t i, std::uint32_t j, double fx, double fy, double q_i,
+                double q_j) const {
+    add(i, -fx, -fy, q_i);
+    add(j, fx, fy, q_j);
+  }
 };
 
 class ForceBuffers {

@@ -131,10 +131,7 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     }
     shear_force_[k] = fs;
     const double fx = fn * nx + fs * tx, fy = fn * ny + fs * ty;  // on the disc
-    double* fi = out.force_for(i);  // the particle arrays, or this thread's buffer
-    fi[2 * i] += fx;
-    fi[2 * i + 1] += fy;
-    out.torque_for(i)[i] -= fs * r;
+    out.add(i, fx, fy, -fs * r);
     b.force_x -= fx;
     b.force_y -= fy;
   }

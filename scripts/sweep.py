@@ -1,15 +1,19 @@
 #!/usr/bin/python3
 """Parameter sweep of a scene, and the paper's figures 8-12 from it.
 
-  scripts/sweep CASE --vary water_depth_m=0,10,40,100,250,1000,2000 [--jobs N] [--out DIR]
-                [--set path=value ...] [--coupler PATH] [--plot-only]
+  scripts/sweep CASE --vary water_depth_m=0,10,40,100,250,1000,2000 [--seeds 1,2,3] [--jobs N]
+                [--out DIR] [--set path=value ...] [--coupler PATH] [--plot-only]
 
 Runs `coupler run CASE --out DIR/<name>=<value> [--set path=value ...] --set <name>=<value>` once
 per value, --jobs at a time, each run's output in DIR/<name>=<value>/log.txt, and prints one line
-per finished run. Then writes
-  DIR/sweep.csv                one row per value: the varied parameter, hydrostatic_pressure_pa,
-                               then every scalar key of the runs' summary.json (sorted) and the
-                               run's exit_code
+per finished run. With --seeds, every value is run once per specimen seed
+(`--set dem.specimen.seed=S`) into DIR/<name>=<value>/seed=<S>/, seed by seed, so that an
+interrupted sweep already holds whole curves. Then writes
+  DIR/sweep.csv                one row per run: the varied parameter, hydrostatic_pressure_pa,
+                               (seed,) then every scalar key of the runs' summary.json (sorted)
+                               and the run's exit_code
+  DIR/sweep_mean.csv           with --seeds: one row per value, the mean, min and max over the
+                               seeds of every numeric key (key, key_min, key_max) and runs_ok
   DIR/fig08_forces.png         mean horizontal and vertical tool force against the hydrostatic
                                pressure (paper figure 8)
   DIR/fig09_pressure_p1.png    mean pore pressure at P1 (figure 9)
@@ -19,13 +23,17 @@ per finished run. Then writes
   DIR/breaks_fraction.png      tensile and shear share of the broken bonds
   DIR/chips.png                number of chips and their mean area
 When the varied parameter is not water_depth_m, figures 8-10 are drawn against the varied value.
+With --seeds the figures draw the mean over the seeds, a bar over their range and each seed's run
+as a faint dot; the damage maps are those of the first seed.
 A figure whose summary keys no run has (e.g. the pressures of a dry scene) is skipped with a note.
 
   --out DIR      default out/sweep_<case stem>
   --jobs N       runs at a time; default the CPUs divided by the scene's dem.threads
   --coupler PATH default build/bin/coupler of this repository
-  --plot-only    run nothing: collect sweep.csv and draw from DIR (CASE and --vary may then be left
-                 out when --out is given: the values are found from DIR's <name>=<value> folders)
+  --seeds LIST   specimen seeds, e.g. 1,2,3: one run per value and seed (default: the scene's seed)
+  --plot-only    run nothing: collect sweep.csv and draw from DIR (CASE, --vary and --seeds may then
+                 be left out when --out is given: they are found from DIR's <name>=<value> and
+                 seed=<S> folders)
 
 Exit status: 0 if every run succeeded (coupler exit code 0), 1 if any failed (the sweep goes on and
 draws what it has), 2 on bad arguments, 130 if interrupted. With --plot-only: 0 once drawn (failed
@@ -71,12 +79,24 @@ def parse_vary(text):
     return name.strip(), values
 
 
+def parse_seeds(text):
+    """'1,2,3' -> [1, 2, 3] (distinct non-negative integers)."""
+    try:
+        seeds = [int(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected seeds like 1,2,3 , got '{text}'")
+    if not seeds or len(set(seeds)) != len(seeds) or min(seeds) < 0:
+        raise argparse.ArgumentTypeError(f"expected distinct seeds >= 0 like 1,2,3 , got '{text}'")
+    return seeds
+
+
 def parse_args(argv):
     p = argparse.ArgumentParser(prog="scripts/sweep", description=__doc__.split("\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter,
                                 epilog="\n".join(__doc__.split("\n")[1:]))
     p.add_argument("case", nargs="?", help="scene file (protobuf text format)")
     p.add_argument("--vary", type=parse_vary, help="name=v1,v2,... : the scene field to vary")
+    p.add_argument("--seeds", type=parse_seeds, help="1,2,3 : one run per value and specimen seed")
     p.add_argument("--jobs", type=int, help="runs at a time")
     p.add_argument("--out", help="sweep directory (default out/sweep_<case stem>)")
     p.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
@@ -107,6 +127,17 @@ def values_in(out):
         raise SystemExit(f"sweep: cannot tell the varied parameter from {out} "
                          f"(found {sorted(found) or 'no <name>=<value> folders'}): give --vary")
     return next(iter(found.items()))
+
+
+def seeds_in(out, name, values):
+    """The seeds of the seed=<S> folders under the value folders (None: one run per value)."""
+    seeds = set()
+    for value in values:
+        d = run_dir(out, name, value)
+        for sub in os.listdir(d) if os.path.isdir(d) else []:
+            if sub.startswith("seed=") and sub[5:].isdigit() and os.path.isdir(os.path.join(d, sub)):
+                seeds.add(int(sub[5:]))
+    return sorted(seeds) or None
 
 
 def sorted_values(values):
@@ -158,8 +189,8 @@ def dem_threads(case, sets):
 # Running
 
 
-def start_run(args, name, value):
-    d = run_dir(args.out, name, value)
+def start_run(args, name, value, seed):
+    d = run_dir(args.out, name, value, seed)
     os.makedirs(d, exist_ok=True)
     # Files of an earlier sweep in the same folder must not pass for this run's results.
     for stale in ("summary.json", "sweep_run.json", "run.h5", "run.xdmf"):
@@ -168,6 +199,8 @@ def start_run(args, name, value):
     cmd = [args.coupler, "run", args.case, "--out", d]
     for s in args.set:
         cmd += ["--set", s]
+    if seed is not None:
+        cmd += ["--set", f"dem.specimen.seed={seed}"]
     cmd += ["--set", f"{name}={value}"]  # last, so that it wins over a --set of the same field
     log = open(os.path.join(d, "log.txt"), "w")
     log.write("$ " + " ".join(cmd) + "\n")
@@ -179,28 +212,31 @@ def start_run(args, name, value):
     return proc, log, time.monotonic(), cmd
 
 
-def finish_run(args, name, value, proc, log, t0, cmd):
+def finish_run(args, name, value, seed, proc, log, t0, cmd):
     """Records the run's exit code beside its output (for --plot-only) and prints its line."""
     log.close()
     wall = time.monotonic() - t0
-    d = run_dir(args.out, name, value)
+    d = run_dir(args.out, name, value, seed)
     with open(os.path.join(d, "sweep_run.json"), "w") as f:
         json.dump({"command": cmd, "exit_code": proc.returncode, "sweep_wall_s": wall}, f, indent=1)
     summary = read_summary(d)
     status = summary.get("status") if summary else "no summary.json"
     ok = proc.returncode == 0
-    print(f"{name}={value}: {'ok' if ok else 'FAILED'}, status {status}, {wall:.1f} s wall, "
+    label = f"{name}={value}" + ("" if seed is None else f" seed={seed}")
+    print(f"{label}: {'ok' if ok else 'FAILED'}, status {status}, {wall:.1f} s wall, "
           f"exit code {proc.returncode}" + ("" if ok else f"  (see {d}/log.txt)"), flush=True)
     return ok
 
 
-def run_sweep(args, name, values):
-    """Runs every value, --jobs at a time. Returns True if all exited with 0."""
+def run_sweep(args, name, values, seeds):
+    """Runs every value (and seed), --jobs at a time. Returns True if all exited with 0."""
     jobs = args.jobs or max(1, cpu_count() // dem_threads(args.case, args.set))
-    print(f"sweep: {len(values)} runs of {args.case} ({name} = {', '.join(values)}), {jobs} at a "
-          f"time, into {args.out}", flush=True)
-    pending = list(values)
-    running = {}  # value -> (proc, log, t0, cmd)
+    # Seed by seed: the first seed's whole curve is done before the second seed starts.
+    pending = [(v, s) for s in (seeds or [None]) for v in values]
+    print(f"sweep: {len(pending)} runs of {args.case} ({name} = {', '.join(values)}"
+          + ("" if seeds is None else f"; seeds {', '.join(map(str, seeds))}")
+          + f"), {jobs} at a time, into {args.out}", flush=True)
+    running = {}  # (value, seed) -> (proc, log, t0, cmd)
     all_ok = True
 
     def stop(signum, frame):  # `kill` of the sweep stops its runs as Ctrl-C does
@@ -210,11 +246,11 @@ def run_sweep(args, name, values):
     try:
         while pending or running:
             while pending and len(running) < jobs:
-                value = pending.pop(0)
-                running[value] = start_run(args, name, value)
+                key = pending.pop(0)
+                running[key] = start_run(args, name, *key)
             time.sleep(0.2)
-            for value in [v for v, r in running.items() if r[0].poll() is not None]:
-                all_ok = finish_run(args, name, value, *running.pop(value)) and all_ok
+            for key in [k for k, r in running.items() if r[0].poll() is not None]:
+                all_ok = finish_run(args, name, *key, *running.pop(key)) and all_ok
     except KeyboardInterrupt:
         # Ask the runs to stop (the coupler closes its output on SIGTERM), then insist.
         print(f"sweep: interrupted; stopping {len(running)} run(s)", file=sys.stderr)
@@ -243,11 +279,11 @@ def read_summary(d):
         return None
 
 
-def collect(out, name, values):
-    """One row (dict) per value, in the order of `values`."""
+def collect(out, name, values, seeds=None):
+    """One row (dict) per run, in the order of `values` (then `seeds`)."""
     rows = []
-    for value in values:
-        d = run_dir(out, name, value)
+    for value, seed in [(v, s) for v in values for s in (seeds or [None])]:
+        d = run_dir(out, name, value, seed)
         summary = read_summary(d) or {}
         row = {k: v for k, v in summary.items()
                if v is None or isinstance(v, (bool, int, float, str))}  # scalars only
@@ -263,13 +299,16 @@ def collect(out, name, values):
         if "hydrostatic_pressure_pa" not in row and depth is not None:
             row["hydrostatic_pressure_pa"] = P_ATM_PA + RHO_WATER_KG_M3 * GRAVITY_M_S2 * depth
         row[name] = value
+        if seed is not None:
+            row["seed"] = seed
         rows.append(row)
     return rows
 
 
 def write_csv(path, name, rows):
-    keys = sorted(set().union(*(r.keys() for r in rows)) - {name, "hydrostatic_pressure_pa"})
-    columns = [name, "hydrostatic_pressure_pa"] + keys
+    first = [name, "hydrostatic_pressure_pa"] + (["seed"] if any("seed" in r for r in rows) else [])
+    keys = sorted(set().union(*(r.keys() for r in rows)) - set(first))
+    columns = first + keys
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=columns, restval="")
         w.writeheader()
@@ -283,25 +322,36 @@ def write_csv(path, name, rows):
 def main(argv):
     args = parse_args(argv)
     name, values = args.vary if args.vary else values_in(args.out)
+    seeds = args.seeds
     ok = True
     if not args.plot_only:
         if not os.access(args.coupler, os.X_OK):
             print(f"sweep: no coupler at {args.coupler} (build it, or give --coupler)",
                   file=sys.stderr)
             return 2
-        ok = run_sweep(args, name, values)
-    rows = collect(args.out, name, sorted_values(values))
+        ok = run_sweep(args, name, values, seeds)
+    elif seeds is None:
+        seeds = seeds_in(args.out, name, values)
+    rows = collect(args.out, name, sorted_values(values), seeds)
     if not any("exit_code" in r or r.get("status") not in (None, "not run") for r in rows):
         print(f"sweep: no run results in {args.out}", file=sys.stderr)
         return 1
     os.makedirs(args.out, exist_ok=True)
-    failed = [f"{r[name]} (exit code {r['exit_code']})" for r in rows
+    failed = [f"{r[name]}" + (f" seed {r['seed']}" if "seed" in r else "")
+              + f" (exit code {r['exit_code']})" for r in rows
               if r.get("exit_code") not in (0, None)]
     if args.plot_only and failed:
         note(f"runs that failed: {', '.join(failed)}")
     write_csv(os.path.join(args.out, "sweep.csv"), name, rows)
     print(f"wrote {os.path.join(args.out, 'sweep.csv')}")
-    draw(Sweep(args.out, name, rows))
+    sweep = Sweep(args.out, name, rows)
+    mean_csv = os.path.join(args.out, "sweep_mean.csv")
+    if seeds is not None:
+        write_csv(mean_csv, name, sweep.mean_rows())
+        print(f"wrote {mean_csv}")
+    elif os.path.exists(mean_csv):
+        os.remove(mean_csv)  # from an earlier sweep with seeds in the same folder
+    draw(sweep)
     if not ok:
         print("sweep: some runs failed (see above)", file=sys.stderr)
     return 0 if ok else 1

@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """The figures of scripts/sweep (paper figures 8-12, break fractions, chips) from a sweep folder.
 
-A sweep folder holds one run folder per value, DIR/<name>=<value> (run_dir), with the run's
-summary.json and run.h5, and the collected DIR/sweep.csv. `draw(Sweep(DIR, name, rows))` draws
-every figure whose data the rows have and notes the ones it skips.
+A sweep folder holds one run folder per value, DIR/<name>=<value> (run_dir), or with seeds one per
+value and seed, DIR/<name>=<value>/seed=<S>, with the run's summary.json and run.h5, and the
+collected DIR/sweep.csv. `draw(Sweep(DIR, name, rows))` draws every figure whose data the rows have
+and notes the ones it skips. With several runs per value (seeds) a figure draws their mean, a bar
+over their range (min to max) and each run as a faint dot.
 """
 import glob
 import math
@@ -33,8 +35,9 @@ def as_number(value):
         return None
 
 
-def run_dir(out, name, value):
-    return os.path.join(out, f"{name}={value}")
+def run_dir(out, name, value, seed=None):
+    d = os.path.join(out, f"{name}={value}")
+    return d if seed is None else os.path.join(d, f"seed={seed}")
 
 
 UNITS = (("_m_s", "m/s"), ("_m2", "m²"), ("_pa", "Pa"), ("_deg", "°"), ("_s", "s"), ("_m", "m"))
@@ -56,23 +59,78 @@ def value_unit(name):
 
 
 class Sweep:
-    """The collected rows, sorted by the varied value, with helpers to pull out columns."""
+    """The collected rows (one per run), grouped by the varied value and sorted by it, with helpers
+    to pull out columns: the mean over a value's runs, their range and the runs themselves."""
 
     def __init__(self, out, name, rows):
         self.out, self.name = out, name
-        self.numeric = all(as_number(r[name]) is not None for r in rows)
-        self.rows = sorted(rows, key=lambda r: float(r[name])) if self.numeric else rows
-        self.values = [r[name] for r in self.rows]
+        groups = {}
+        for r in rows:
+            groups.setdefault(r[name], []).append(r)
+        self.numeric = all(as_number(v) is not None for v in groups)
+        self.values = sorted(groups, key=float) if self.numeric else list(groups)
+        self.groups = [groups[v] for v in self.values]  # the runs of each value
+        self.seeded = any(len(g) > 1 for g in self.groups)
         # Non-numeric values (e.g. fluid.model=explicit,implicit) are drawn at 0, 1, 2, ...
         self.x = (np.array([float(v) for v in self.values]) if self.numeric
                   else np.arange(len(self.values), dtype=float))
 
+    def per_run(self, key):
+        """[array of the runs' values] per value; `key` is a summary key or a function of a row.
+        Missing values are NaN."""
+        get = key if callable(key) else (lambda r: as_number(r.get(key)))
+        return [np.array([get(r) for r in g], dtype=float) for g in self.groups]
+
     def column(self, key):
-        """The key's values as floats (NaN where missing), or None if no run has it."""
-        col = np.array([as_number(r.get(key)) for r in self.rows], dtype=float)  # None -> NaN
-        if np.isnan(col).all():
+        """The mean over each value's runs that have the key (NaN where none has it), or None if
+        no run has it."""
+        runs = self.per_run(key)
+        if all(np.isnan(v).all() for v in runs):
             return None
-        return col
+        return np.array([v[np.isfinite(v)].mean() if np.isfinite(v).any() else np.nan
+                         for v in runs])
+
+    def spread(self, key):
+        """(min, max) arrays over each value's runs, or None with one run per value."""
+        if not self.seeded:
+            return None
+        runs = self.per_run(key)
+        lo = np.array([v[np.isfinite(v)].min() if np.isfinite(v).any() else np.nan for v in runs])
+        hi = np.array([v[np.isfinite(v)].max() if np.isfinite(v).any() else np.nan for v in runs])
+        return lo, hi
+
+    def points(self, key, x):
+        """(x, y) of every run, x being the value's position on the figure's axis."""
+        runs = self.per_run(key)
+        xs = np.concatenate([np.full(len(v), xi) for xi, v in zip(x, runs)])
+        return xs, np.concatenate(runs)
+
+    def mean_rows(self):
+        """One row per value: the mean, min and max over its runs of every numeric key, and the
+        number of runs that exited with 0 (for sweep_mean.csv)."""
+        skip = {self.name, "seed", "exit_code"}
+        keys = sorted({k for g in self.groups for r in g for k, v in r.items()
+                       if k not in skip and isinstance(v, (int, float)) and not isinstance(v, bool)})
+        rows = []
+        for value, g, mean in zip(self.values, self.groups,
+                                  zip(*[self.column(k) for k in keys]) if keys else []):
+            row = {self.name: value, "runs": len(g),
+                   "runs_ok": sum(1 for r in g if r.get("exit_code") == 0)}
+            for k, m in zip(keys, mean):
+                v = np.array([as_number(r.get(k)) for r in g], dtype=float)
+                v = v[np.isfinite(v)]
+                if len(v):
+                    row[k], row[k + "_min"], row[k + "_max"] = float(m), float(v.min()), float(v.max())
+            rows.append(row)
+        return rows
+
+    def run_with(self, value, filename):
+        """The folder of the value's first run (by seed) that has `filename`, or None."""
+        for r in sorted(self.groups[self.values.index(value)], key=lambda r: r.get("seed", 0)):
+            d = run_dir(self.out, self.name, value, r.get("seed"))
+            if os.path.isfile(os.path.join(d, filename)):
+                return d
+        return None
 
     def columns(self, keys, figure):
         """{key: column} of the keys some run has; notes the others."""
@@ -133,6 +191,23 @@ def plot_series(ax, x, y, *args, **kw):
     ax.plot(x[ok], y[ok], *args, **kw)
 
 
+def plot_key(ax, s, x, key, scale, fmt, colour, label=None):
+    """The mean of `key` over each value's runs as points and lines; with several runs per value
+    also a bar from their min to their max and each run as a faint dot."""
+    mean = s.column(key)
+    plot_series(ax, x, mean * scale, fmt, color=colour, label=label)
+    band = s.spread(key)
+    if band is None:
+        return
+    lo, hi = band
+    ok = np.isfinite(x) & np.isfinite(mean)
+    ax.errorbar(x[ok], mean[ok] * scale,
+                yerr=[(mean[ok] - lo[ok]) * scale, (hi[ok] - mean[ok]) * scale],
+                fmt="none", ecolor=colour, elinewidth=1, capsize=3)
+    px, py = s.points(key, x)
+    plot_series(ax, px, py * scale, ".", color=colour, alpha=0.3)
+
+
 def save(fig, s, filename):
     fig.tight_layout()
     fig.savefig(s.path(filename))
@@ -144,6 +219,14 @@ def remove_stale(s, pattern):
     """A figure that is not drawn this time must not be left from an earlier sweep in DIR."""
     for f in glob.glob(s.path(pattern)):
         os.remove(f)
+
+
+def runs_note(s):
+    """Appended to the titles of figures drawn from several runs per value."""
+    if not s.seeded:
+        return ""
+    n = max(len(g) for g in s.groups)
+    return f"\nmean of {n} specimen seeds; bars: their range, dots: each seed"
 
 
 def line_figure(s, filename, title, series, ylabel, scale, against_pressure):
@@ -159,12 +242,12 @@ def line_figure(s, filename, title, series, ylabel, scale, against_pressure):
     fig, ax = plt.subplots(figsize=(7, 4.5), dpi=100)
     for key, label, colour in series:
         if key in cols:
-            plot_series(ax, x, cols[key] * scale, "o-", color=colour, label=label)
+            plot_key(ax, s, x, key, scale, "o-", colour, label)
     ax.axhline(0, color="k", lw=0.5)
     value_axis(s, ax, is_pressure)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    ax.set_title(title, fontsize=10)
+    ax.set_title(title + runs_note(s), fontsize=10)
     ax.legend(fontsize=8)
     save(fig, s, filename)
 
@@ -195,12 +278,19 @@ def fig_breaks_fraction(s):
     cols = s.columns(["breaks_tensile", "breaks_shear"], filename)
     if len(cols) < 2:
         return
-    total = cols["breaks_tensile"] + cols["breaks_shear"]
-    with np.errstate(invalid="ignore", divide="ignore"):  # no breaks at all: no fraction (NaN)
-        tensile = np.where(total > 0, cols["breaks_tensile"] / total, np.nan)
+    total = cols["breaks_tensile"] + cols["breaks_shear"]  # mean over the runs of a value
+
+    def fraction(mode):  # per run; a run without breaks has no fraction (NaN)
+        def f(r):
+            t, sh = as_number(r.get("breaks_tensile")), as_number(r.get("breaks_shear"))
+            if t is None or sh is None or t + sh == 0:
+                return np.nan
+            return (t if mode == "tensile" else sh) / (t + sh)
+        return f
+
     fig, ax = plt.subplots(figsize=(7, 4.5), dpi=100)
-    plot_series(ax, s.x, tensile, "o-", color="tab:blue", label="tensile")
-    plot_series(ax, s.x, 1 - tensile, "s-", color="tab:red", label="shear")
+    plot_key(ax, s, s.x, fraction("tensile"), 1.0, "o-", "tab:blue", "tensile")
+    plot_key(ax, s, s.x, fraction("shear"), 1.0, "s-", "tab:red", "shear")
     for xi, n in zip(s.x, total):
         if np.isfinite(n):
             ax.annotate(f"{int(n)}", (xi, 1.0), textcoords="offset points", xytext=(0, 3),
@@ -209,7 +299,8 @@ def fig_breaks_fraction(s):
     ax.set_ylim(0, 1.08)
     ax.set_xlabel(axis_label(s.name))
     ax.set_ylabel("fraction of the broken bonds [-]")
-    ax.set_title("Bond breaks by mode (number of breaks above the points)", fontsize=10)
+    ax.set_title("Bond breaks by mode (number of breaks above the points)" + runs_note(s),
+                 fontsize=10)
     # Outside the axes: inside it would hide the counts along the top.
     ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     save(fig, s, filename)
@@ -227,23 +318,26 @@ def fig_chips(s):
     fig, axes = plt.subplots(len(panels), 1, figsize=(7, 2.6 * len(panels) + 1), dpi=100,
                              sharex=True, squeeze=False)
     for ax, (key, ylabel, scale, colour) in zip(axes[:, 0], panels):
-        plot_series(ax, s.x, cols[key] * scale, "o-", color=colour)
+        plot_key(ax, s, s.x, key, scale, "o-", colour)
         ax.set_ylabel(ylabel)
         ax.set_ylim(bottom=0)
         if key == "chips":
             ax.yaxis.set_major_locator(MaxNLocator(integer=True))
         value_axis(s, ax, False)
     axes[-1, 0].set_xlabel(axis_label(s.name))
-    axes[0, 0].set_title("Chips cut off at the end of the run", fontsize=10)
+    axes[0, 0].set_title("Chips cut off at the end of the run" + runs_note(s), fontsize=10)
     save(fig, s, filename)
 
 
 def fig_damage(s, value, filename, figure_no):
-    """Discs of the run's last complete frame coloured by damage, with the chisel, in mm."""
-    h5 = os.path.join(run_dir(s.out, s.name, value), "run.h5")
-    if not os.path.isfile(h5):
-        note(f"{filename}: no {h5}; not drawn")
+    """Discs of the run's last complete frame coloured by damage, with the chisel, in mm (the
+    value's first seed with a run.h5)."""
+    run = s.run_with(value, "run.h5")
+    if run is None:
+        note(f"{filename}: no run.h5 for {s.name}={value}; not drawn")
         return
+    h5 = os.path.join(run, "run.h5")
+    seed = os.path.basename(run) if s.seeded else ""
     d = plot_cutting.load(h5)
     if d.last is None:
         note(f"{filename}: {h5} has no frame with damage; not drawn")
@@ -271,7 +365,7 @@ def fig_damage(s, value, filename, figure_no):
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     ax.set_title(f"Damage at {s.name} = {value}{value_unit(s.name)}, t = {t:.4g} s "
-                 f"(fig. {figure_no})", fontsize=10)
+                 f"(fig. {figure_no})" + (f", {seed}" if seed else ""), fontsize=10)
     save(fig, s, filename)
 
 
@@ -285,8 +379,7 @@ def draw(s):
     # nearest to them that left a run.h5 when a run failed.
     remove_stale(s, "fig11_damage_*.png")
     remove_stale(s, "fig12_damage_*.png")
-    have = [v for v in s.values
-            if os.path.isfile(os.path.join(run_dir(s.out, s.name, v), "run.h5"))]
+    have = [v for v in s.values if s.run_with(v, "run.h5") is not None]
     if not have:
         note("fig11/fig12: no run left a run.h5; not drawn")
         return

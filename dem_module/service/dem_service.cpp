@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/clusters.hpp"
+#include "core/thread_advice.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
 
@@ -62,6 +63,9 @@ void DemService::init(const wire::Init& init, wire::Message& reply) {
     l->set_detail(setup_.critical.detail);
   }
   if (!setup_.specimen_report.empty()) r->add_notes(setup_.specimen_report);
+  const std::string advice =
+      thread_advice(setup_.system->particles().size(), static_cast<int>(init.scene().dem().threads()));
+  if (!advice.empty()) r->add_notes(advice);
 }
 
 void DemService::subscribe(const wire::Subscribe& subscribe, wire::Message& reply) {

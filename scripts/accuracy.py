@@ -5,7 +5,7 @@
 
 On cases/cutting/saturated_reduced.pbtxt, cut short to 24 mm (steady from 10 mm), four ladders
 vary one setting each from the defaults:
-  dt_safety   time.dt_safety        0.4, 0.2 (default), 0.1, 0.05
+  dt_safety   time.dt_safety        0.4, 0.2 (default), 0.1, 0.05, 0.025
   N           coupling.interval     14 (the largest the limits allow), 7, 3 (the coupler's choice,
                                     coupling.interval_fraction 0.25 of the largest), 1 (no lag)
   h           fluid.smoothing_length_m / mean diameter   1.67, 2.5 (default), 3.33
@@ -50,7 +50,8 @@ def size_sets(scale):
 # ladder -> [(label, value, --set list)], coarsest first, finest last
 LADDERS = {
     "dt_safety": [("0.4", 0.4, ["time.dt_safety=0.4"]), ("0.2", 0.2, []),
-                  ("0.1", 0.1, ["time.dt_safety=0.1"]), ("0.05", 0.05, ["time.dt_safety=0.05"])],
+                  ("0.1", 0.1, ["time.dt_safety=0.1"]), ("0.05", 0.05, ["time.dt_safety=0.05"]),
+                  ("0.025", 0.025, ["time.dt_safety=0.025"])],
     "N": [("14", 14, ["coupling.interval=14"]), ("7", 7, ["coupling.interval=7"]),
           ("3", 3, []), ("1", 1, ["coupling.interval=1"])],
     "h": [("3.33", 3.33, ["fluid.smoothing_length_m=0.008"]), ("2.5", 2.5, []),
@@ -199,7 +200,7 @@ def main():
                 for seed in seeds:
                     jobs[run_dir(a.out, ladder, label, seed)] = (sets, seed)
         # The most expensive first, so that two cores stay busy to the end.
-        order = sorted(jobs, key=lambda d: ("size=0.5" not in d, "0.05" not in d))
+        order = sorted(jobs, key=lambda d: ("size=0.5" not in d, "dt_safety=0.0" not in d))
         with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
             for d in pool.map(lambda d: run(a.coupler, d, *jobs[d]), order):
                 s = read(d)

@@ -11,7 +11,7 @@ namespace {
 
 TEST(ExpectedError, FinestSettingsOfEveryLadderHaveNoErrorByDefinition) {
   std::string detail;
-  const auto e = expected_force_error({0.05, 0.0705, 1.67, 0.5}, &detail);
+  const auto e = expected_force_error({0.025, 0.0705, 1.67, 0.5}, &detail);
   ASSERT_TRUE(e.has_value()) << detail;
   EXPECT_EQ(*e, 0.0);
   // Finer than the study: below what it resolves, so the finest's 0 again (paper-scale discs).
@@ -32,14 +32,14 @@ TEST(ExpectedError, InterpolatesBetweenStudiedSettingsAndCombinesByRootSumSquare
   const double at_01 = *expected_force_error({0.1, 0.0705, 1.67, 0.5}, nullptr);
   const double between = *expected_force_error({std::sqrt(0.02), 0.0705, 1.67, 0.5}, nullptr);
   EXPECT_NEAR(between, 0.5 * (at_02 + at_01), 1e-12);  // linear in log(dt_safety), midpoint
-  const double n_only = *expected_force_error({0.05, 1.0, 1.67, 0.5}, nullptr);
+  const double n_only = *expected_force_error({0.025, 1.0, 1.67, 0.5}, nullptr);
   const double both = *expected_force_error({0.2, 1.0, 1.67, 0.5}, nullptr);
   EXPECT_NEAR(both, std::hypot(at_02, n_only), 1e-12);
-  // The study's values at its settings (docs/accuracy.md): 26 % at dt_safety 0.2, 73 % at the
-  // largest stable N, 22 % at the coupler's N = 3 (0.211 of the stiffness limit).
-  EXPECT_NEAR(at_02, 0.26, 1e-12);
-  EXPECT_NEAR(n_only, 0.73, 1e-12);
-  EXPECT_NEAR(*expected_force_error({0.05, 0.211, 1.67, 0.5}, nullptr), 0.22, 1e-12);
+  // The study's values at its settings (docs/accuracy.md, session 10): 7 % at dt_safety 0.2,
+  // 108 % at the largest stable N, 36 % at the coupler's N = 3 (0.211 of the stiffness limit).
+  EXPECT_NEAR(at_02, 0.07, 1e-12);
+  EXPECT_NEAR(n_only, 1.08, 1e-12);
+  EXPECT_NEAR(*expected_force_error({0.025, 0.211, 1.67, 0.5}, nullptr), 0.36, 1e-12);
 }
 
 }  // namespace

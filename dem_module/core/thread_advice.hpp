@@ -8,10 +8,10 @@ namespace rockcut::dem {
 
 /// Below this many particles per thread a second thread costs more than it saves. Measured with
 /// the coupler's module processes (OMP_WAIT_POLICY=PASSIVE, each synchronisation wakes a sleeping
-/// thread): dry_reduced, 647 discs and 398,311 steps, took 51 s on 2 threads against 12 s on 1,
-/// about 100 us of synchronisation per step. One thread steps a particle in about 36 ns
-/// (bench_dem, 2.8e7 particle-steps/s), so a second thread saves about 18 ns per particle and
-/// step: 100 us / 18 ns is about 5,500 particles, i.e. about 2,750 per thread.
+/// thread): dry_reduced, 647 discs and 398,311 steps, took 52 s on 2 threads against 9.7 s on 1,
+/// about 106 us of synchronisation per step. One thread steps a particle in about 37 ns
+/// (2.7e7 particle-steps/s in that run), so a second thread saves about 19 ns per particle and
+/// step: 106 us / 19 ns is about 5,600 particles, i.e. about 2,800 per thread.
 inline constexpr std::size_t kMinParticlesPerThread = 3000;
 
 /// A one-line note for the run's log when `threads` > 1 is too many for `particles`, else "".

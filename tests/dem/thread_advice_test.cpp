@@ -13,7 +13,7 @@ TEST(ThreadAdvice, SilentForOneThreadAndForEnoughParticles) {
 }
 
 TEST(ThreadAdvice, NamesTheFieldTheCountsAndAThreadCountThatFits) {
-  // The reduced cutting scene on 2 threads: 51 s against 12 s on 1 (thread_advice.hpp).
+  // The reduced cutting scene on 2 threads: 52 s against 9.7 s on 1 (thread_advice.hpp).
   const std::string note = thread_advice(647, 2);
   EXPECT_NE(note.find("dem.threads 2 for 647 particles (323 per thread)"), std::string::npos) << note;
   EXPECT_NE(note.find("dem.threads: 1 is likely faster"), std::string::npos) << note;

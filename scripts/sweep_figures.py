@@ -81,23 +81,24 @@ class Sweep:
         get = key if callable(key) else (lambda r: as_number(r.get(key)))
         return [np.array([get(r) for r in g], dtype=float) for g in self.groups]
 
-    def column(self, key):
-        """The mean over each value's runs that have the key (NaN where none has it), or None if
-        no run has it."""
-        runs = self.per_run(key)
-        if all(np.isnan(v).all() for v in runs):
+    def stats(self, key):
+        """(mean, min, max) arrays over each value's runs that have the key (NaN where none has
+        it), or None if no run has it."""
+        runs = [v[np.isfinite(v)] for v in self.per_run(key)]
+        if not any(len(v) for v in runs):
             return None
-        return np.array([v[np.isfinite(v)].mean() if np.isfinite(v).any() else np.nan
-                         for v in runs])
+        return tuple(np.array([f(v) if len(v) else np.nan for v in runs])
+                     for f in (np.mean, np.min, np.max))
+
+    def column(self, key):
+        """The mean over each value's runs that have the key, or None if no run has it."""
+        st = self.stats(key)
+        return None if st is None else st[0]
 
     def spread(self, key):
         """(min, max) arrays over each value's runs, or None with one run per value."""
-        if not self.seeded:
-            return None
-        runs = self.per_run(key)
-        lo = np.array([v[np.isfinite(v)].min() if np.isfinite(v).any() else np.nan for v in runs])
-        hi = np.array([v[np.isfinite(v)].max() if np.isfinite(v).any() else np.nan for v in runs])
-        return lo, hi
+        st = self.stats(key) if self.seeded else None
+        return None if st is None else st[1:]
 
     def points(self, key, x):
         """(x, y) of every run, x being the value's position on the figure's axis."""
@@ -111,16 +112,15 @@ class Sweep:
         skip = {self.name, "seed", "exit_code"}
         keys = sorted({k for g in self.groups for r in g for k, v in r.items()
                        if k not in skip and isinstance(v, (int, float)) and not isinstance(v, bool)})
+        stats = {k: self.stats(k) for k in keys}
         rows = []
-        for value, g, mean in zip(self.values, self.groups,
-                                  zip(*[self.column(k) for k in keys]) if keys else []):
+        for i, (value, g) in enumerate(zip(self.values, self.groups)):
             row = {self.name: value, "runs": len(g),
                    "runs_ok": sum(1 for r in g if r.get("exit_code") == 0)}
-            for k, m in zip(keys, mean):
-                v = np.array([as_number(r.get(k)) for r in g], dtype=float)
-                v = v[np.isfinite(v)]
-                if len(v):
-                    row[k], row[k + "_min"], row[k + "_max"] = float(m), float(v.min()), float(v.max())
+            for k, (mean, lo, hi) in stats.items():
+                if np.isfinite(mean[i]):
+                    row[k], row[k + "_min"], row[k + "_max"] = (float(mean[i]), float(lo[i]),
+                                                               float(hi[i]))
             rows.append(row)
         return rows
 

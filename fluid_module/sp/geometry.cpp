@@ -9,14 +9,19 @@ namespace rockcut::fluid::sp {
 
 namespace {
 
-// Pair kernel values and the Shepard volumes V_i = 1 / sum_j W_ij. Raw restrict pointers and
-// local constants: with the vectors' own pointers the compiler must assume that each store may
-// change them (and the kernel's constants) and reloads them for every pair (measured: 1.5x).
+// Pair kernel values of the listed pairs inside the support, packed at the start of each row's
+// slots, and the Shepard volumes V_i = 1 / sum_j W_ij. Raw restrict pointers and local constants:
+// with the vectors' own pointers the compiler must assume that each store may change them (and
+// the kernel's constants) and reloads them for every pair (measured: 1.5x). Every pair is written
+// and the write position advances only for a pair inside: a branch on it would be mispredicted
+// for the sixth of the pairs that lie in the skin.
 void pair_kernels(const NeighbourList& list, const WendlandC2& kernel, const double* x,
                   Geometry& g) {
   const int n = static_cast<int>(list.particles());
   const int* __restrict off = list.offsets().data();
   const int* __restrict nb = list.neighbours().data();
+  int* __restrict kept = g.neighbours.data();
+  int* __restrict row_end = g.row_end.data();
   double* __restrict ws = g.w.data();
   double* __restrict fs = g.f.data();
   double* __restrict volume = g.volume.data();
@@ -26,30 +31,35 @@ void pair_kernels(const NeighbourList& list, const WendlandC2& kernel, const dou
   for (int i = 0; i < n; ++i) {
     const double xi = x[2 * i], yi = x[2 * i + 1];
     double sum_w = w0;
+    int out = off[i];
     for (int p = off[i]; p < off[i + 1]; ++p) {
       const int j = nb[p];
       const double dx = x[2 * j] - xi, dy = x[2 * j + 1] - yi;
       double w, f;
       k.w_and_f(std::sqrt(dx * dx + dy * dy), w, f);
-      ws[p] = w;
-      fs[p] = f;
-      sum_w += w;
+      kept[out] = j;
+      ws[out] = w;
+      fs[out] = f;
+      out += (w != 0.0) | (f != 0.0);
+      sum_w += w;  // (+0 beyond h: the same bits as leaving it out)
     }
+    row_end[i] = out;
     volume[i] = 1.0 / sum_w;
   }
 }
 
 // One partition-of-unity refinement V_i <- V_i / sum_j V_j W_ij (Jacobi: all from the old V).
-void refine_volumes(const NeighbourList& list, double w0, Geometry& g) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+void refine_volumes(double w0, Geometry& g) {
+  const int n = static_cast<int>(g.particles());
+  const int* begin = g.row_begin.data();
+  const int* end = g.row_end.data();
+  const int* nb = g.neighbours.data();
   const double* v = g.volume.data();
   double* out = g.scratch.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double s = v[i] * w0;
-    for (int k = off[i]; k < off[i + 1]; ++k) s += v[nb[k]] * g.w[k];
+    for (int k = begin[i]; k < end[i]; ++k) s += v[nb[k]] * g.w[k];
     out[i] = v[i] / s;
   }
   g.volume.swap(g.scratch);
@@ -60,11 +70,11 @@ void refine_volumes(const NeighbourList& list, double w0, Geometry& g) {
 // Lucy's div r of eq. 24, sum_j (m_j / rho_j) (x_j - x_i) . grad_i W_ij = sum_j V_j (-F_ij) r^2.
 // The difference form (x_j - x_i) is used so that div r does not depend on where the origin is.
 // With the same volumes, -sum_j (m_j / rho_j) grad_i W_ij points out of the surface.
-void correction_matrices(const NeighbourList& list, std::span<const double> lucy_volume,
-                         Geometry& g) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+void correction_matrices(std::span<const double> lucy_volume, Geometry& g) {
+  const int n = static_cast<int>(g.particles());
+  const int* begin = g.row_begin.data();
+  const int* end = g.row_end.data();
+  const int* nb = g.neighbours.data();
   const double* v = g.volume.data();
   const double* vl = lucy_volume.data();
   const double* x = g.position.data();
@@ -72,7 +82,7 @@ void correction_matrices(const NeighbourList& list, std::span<const double> lucy
   for (int i = 0; i < n; ++i) {
     double a = 0.0, b = 0.0, c = 0.0, divr = 0.0, nx = 0.0, ny = 0.0;
     const double xi = x[2 * i], yi = x[2 * i + 1];
-    for (int k = off[i]; k < off[i + 1]; ++k) {
+    for (int k = begin[i]; k < end[i]; ++k) {
       const int j = nb[k];
       const double dx = x[2 * j] - xi, dy = x[2 * j + 1] - yi, mf = -g.f[k];
       const double s = v[j] * mf;
@@ -127,6 +137,9 @@ void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
   const std::size_t pairs = list.pairs();
   // Sizes change only with the particle count or a rebuild; resize keeps the capacity.
   geo.position.assign(position.begin(), position.end());
+  geo.row_begin.assign(list.offsets().begin(), list.offsets().end() - (n > 0 ? 1 : 0));
+  geo.row_end.resize(n);
+  geo.neighbours.resize(pairs);
   geo.w.resize(pairs);
   geo.f.resize(pairs);
   geo.volume.resize(n);
@@ -136,8 +149,13 @@ void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
   geo.div_r.resize(n);
   geo.normal.resize(2 * n);
   pair_kernels(list, kernel, geo.position.data(), geo);
-  for (unsigned k = 0; k < volume_iterations; ++k) refine_volumes(list, kernel.w0(), geo);
-  correction_matrices(list, lucy_volume, geo);
+  geo.pairs_inside = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    geo.pairs_inside += static_cast<std::size_t>(geo.row_end[i] - geo.row_begin[i]);
+  }
+  for (unsigned k = 0; k < volume_iterations; ++k) refine_volumes(kernel.w0(), geo);
+  correction_matrices(lucy_volume, geo);
+  ++geo.version;
 }
 
 }  // namespace rockcut::fluid::sp

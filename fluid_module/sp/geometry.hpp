@@ -7,6 +7,12 @@
 // which costs two loads of a cache line they read anyway. Storing the differences too doubled the
 // memory traffic of every pass, and the passes are bound by it (58,000 particles: 1.3 million
 // listed pairs).
+//
+// Only the pairs inside the support are kept. The neighbour list reaches 1.1 h (its skin, so that
+// it is rebuilt rarely), and the ring from h to 1.1 h holds about a sixth of its pairs, all with
+// W = F = 0: terms every pass would add as exact zeros. Each row keeps its slots in the list's CSR
+// arrays (row_begin = the list's offsets) and ends early (row_end), so dropping them needs no
+// second copy.
 #pragma once
 
 #include <cstdint>
@@ -27,7 +33,11 @@ enum class Correction : std::uint8_t {
 
 struct Geometry {
   std::vector<double> position;  ///< the positions of this step [m], interleaved x, y
-  // Per pair, in the CSR order of NeighbourList (pairs beyond h have w = f = 0).
+  /// Row i holds the pairs (i, neighbours[k]) with k in [row_begin[i], row_end[i]): the listed
+  /// neighbours closer than h, sorted by index, never i itself. Symmetric: j is in row i exactly
+  /// when i is in row j.
+  std::vector<int> row_begin, row_end, neighbours;
+  // Per pair, at the same index k as `neighbours`.
   std::vector<double> w;       ///< W_ij [1/m^2]
   std::vector<double> f;       ///< F_ij = W'(r_ij) / r_ij [1/m^4], so grad_i W_ij = F_ij (x_i - x_j)
   // Per particle.
@@ -43,6 +53,12 @@ struct Geometry {
   std::vector<double> scratch; ///< per particle, for the volume iterations
 
   std::size_t particles() const { return volume.size(); }
+  /// The pairs inside the support, both directions.
+  std::size_t pairs() const { return pairs_inside; }
+  std::size_t pairs_inside = 0;
+  /// Counts the geometries computed into this object (the implicit model's matrix pattern
+  /// follows the rows and is rebuilt when this changes).
+  std::uint64_t version = 0;
 };
 
 /// The eigenvalue ratio below which L_i counts as ill-conditioned and the gradient is taken along

@@ -16,7 +16,7 @@ StabilityLimit ImplicitModel::diffusion_limit() const {
 }
 
 void ImplicitModel::advance(double dt_s) {
-  last_ = system_.step(dt_s, diffusivity_m2_s_, list_, geo_, source_, boundary_,
+  last_ = system_.step(dt_s, diffusivity_m2_s_, geo_, source_, boundary_,
                        params_.p_hydro_pa, params_.cavitation, params_.p_min_pa, pressure_);
 }
 

@@ -10,22 +10,25 @@ namespace rockcut::fluid::sp {
 ImplicitSystem::ImplicitSystem(double tolerance, unsigned max_iterations)
     : tolerance_(tolerance), max_iterations_(max_iterations) {}
 
-void ImplicitSystem::rebuild_pattern(const NeighbourList& list) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+void ImplicitSystem::rebuild_pattern(const Geometry& geo) {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
   a_.resize(n, n);
-  a_.resizeNonZeros(static_cast<Eigen::Index>(list.pairs()) + n);
+  a_.resizeNonZeros(static_cast<Eigen::Index>(geo.pairs()) + n);
+  row_start_.resize(static_cast<std::size_t>(n));
   int* outer = a_.outerIndexPtr();
   int* inner = a_.innerIndexPtr();
   diagonal_.resize(static_cast<std::size_t>(n));
-  // Row i: its neighbours (sorted) with i inserted in order; the value of pair k of row i sits at
-  // k + i (+1 if the neighbour comes after i).
+  // Row i: its neighbours inside the support (sorted) with i inserted in order; the value of the
+  // geometry's pair k of row i sits at row_start_[i] + k (+1 if the neighbour comes after i).
+  int pos = 0;
   for (int i = 0; i < n; ++i) {
-    outer[i] = off[i] + i;
-    int pos = outer[i];
+    outer[i] = pos;
+    row_start_[i] = pos - begin[i];
     bool placed = false;
-    for (int k = off[i]; k < off[i + 1]; ++k) {
+    for (int k = begin[i]; k < end[i]; ++k) {
       if (!placed && nb[k] > i) {
         diagonal_[i] = pos;
         inner[pos++] = i;
@@ -38,35 +41,34 @@ void ImplicitSystem::rebuild_pattern(const NeighbourList& list) {
       inner[pos++] = i;
     }
   }
-  outer[n] = static_cast<int>(list.pairs()) + n;
-  pattern_of_build_ = list.builds();
-  pattern_particles_ = list.particles();
+  outer[n] = pos;
+  pattern_of_geometry_ = geo.version;
 }
 
-void ImplicitSystem::assemble(double dt_s, double d_m2_s, const NeighbourList& list,
-                              const Geometry& geo, std::span<const double> source,
-                              std::span<const double> p) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+void ImplicitSystem::assemble(double dt_s, double d_m2_s, const Geometry& geo,
+                              std::span<const double> source, std::span<const double> p) {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
   const double* v = geo.volume.data();
   double* values = a_.valuePtr();
   const double c = dt_s * d_m2_s;
   for (int i = 0; i < n; ++i) {
-    const int row = off[i] + i;
+    const int row = row_start_[i];
     if (fixed_[i] != free) {
-      for (int k = off[i]; k < off[i + 1]; ++k) values[row + (k - off[i]) + (nb[k] > i)] = 0.0;
+      for (int k = begin[i]; k < end[i]; ++k) values[row + k + (nb[k] > i)] = 0.0;
       values[diagonal_[i]] = v[i];
       b_[i] = v[i] * fixed_value_[i];
       continue;
     }
     double sum_w = 0.0, flux = 0.0, moved = 0.0;
-    for (int k = off[i]; k < off[i + 1]; ++k) {
+    for (int k = begin[i]; k < end[i]; ++k) {
       const int j = nb[k];
       const double w = -2.0 * v[i] * v[j] * geo.f[k];  // >= 0
       sum_w += w;
       flux += w * (p[i] - p[j]);
-      double& a_ij = values[row + (k - off[i]) + (j > i)];
+      double& a_ij = values[row + k + (j > i)];
       if (fixed_[j] != free) {
         a_ij = 0.0;
         moved += w * fixed_value_[j];  // the known increment of a fixed neighbour
@@ -79,14 +81,13 @@ void ImplicitSystem::assemble(double dt_s, double d_m2_s, const NeighbourList& l
   }
 }
 
-double ImplicitSystem::free_residual(int i, double dt_s, double d_m2_s, const NeighbourList& list,
-                                     const Geometry& geo, std::span<const double> source,
+double ImplicitSystem::free_residual(int i, double dt_s, double d_m2_s, const Geometry& geo,
+                                     std::span<const double> source,
                                      std::span<const double> p) const {
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+  const int* nb = geo.neighbours.data();
   const double* v = geo.volume.data();
   double lhs = v[i] * d_[i], flux = 0.0;
-  for (int k = off[i]; k < off[i + 1]; ++k) {
+  for (int k = geo.row_begin[i]; k < geo.row_end[i]; ++k) {
     const int j = nb[k];
     const double w = -2.0 * v[i] * v[j] * geo.f[k];
     lhs += dt_s * d_m2_s * w * (d_[i] - d_[j]);
@@ -95,12 +96,11 @@ double ImplicitSystem::free_residual(int i, double dt_s, double d_m2_s, const Ne
   return dt_s * (v[i] * source[i] - d_m2_s * flux) - lhs;
 }
 
-ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const NeighbourList& list,
-                                    const Geometry& geo, std::span<const double> source,
+ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const Geometry& geo, std::span<const double> source,
                                     std::span<const Boundary> boundary, double p_hydro_pa,
                                     bool cavitation, double p_min_pa, std::span<double> p) {
-  const std::size_t n = list.particles();
-  if (pattern_of_build_ != list.builds() || pattern_particles_ != n) rebuild_pattern(list);
+  const std::size_t n = geo.particles();
+  if (pattern_of_geometry_ != geo.version) rebuild_pattern(geo);
   if (static_cast<std::size_t>(b_.size()) != n) {
     b_.setZero(static_cast<Eigen::Index>(n));
     d_.setZero(static_cast<Eigen::Index>(n));
@@ -129,7 +129,7 @@ ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const 
     for (std::size_t i = 0; i < n; ++i) {
       if (fixed_[i] != free) guess_[i] = fixed_value_[i];
     }
-    assemble(dt_s, diffusivity_m2_s, list, geo, source, p);
+    assemble(dt_s, diffusivity_m2_s, geo, source, p);
     cg_.compute(a_);
     d_ = cg_.solveWithGuess(b_, guess_);
     report.iterations += static_cast<unsigned>(cg_.iterations());
@@ -151,7 +151,7 @@ ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const 
         fixed_value_[i] = p_min_pa - p[i];
         changed = true;
       } else if (fixed_[i] == clamped &&
-                 free_residual(i, dt_s, diffusivity_m2_s, list, geo, source, p) > 0.0) {
+                 free_residual(i, dt_s, diffusivity_m2_s, geo, source, p) > 0.0) {
         fixed_[i] = free;  // inflow exceeds what holding p_min absorbs: eq. 22 releases it
         changed = true;
       }

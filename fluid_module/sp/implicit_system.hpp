@@ -18,8 +18,8 @@
 // takes below p_min, release clamped particles whose unconstrained equation would raise them
 // (positive residual), and repeat until the set no longer changes (docs/fluid_model.md).
 //
-// Memory: the matrix pattern is rebuilt only when the neighbour lists are; each step writes its
-// values in place. Eigen's conjugate gradient allocates its four work vectors once per solve (per
+// Memory: the matrix pattern (the geometry's pairs inside the support) is rebuilt only when the
+// geometry is recomputed; each step writes its values in place. Eigen's conjugate gradient allocates its four work vectors once per solve (per
 // step, never per particle).
 #pragma once
 
@@ -32,7 +32,6 @@
 
 #include "sp/boundary.hpp"
 #include "sp/geometry.hpp"
-#include "sp/neighbours.hpp"
 
 namespace rockcut::fluid::sp {
 
@@ -48,8 +47,8 @@ class ImplicitSystem {
 
   /// Advances `p` [Pa] by dt [s]: D [m^2/s], `source` [Pa/s] per particle. Throws
   /// std::runtime_error if the solver does not converge.
-  ImplicitReport step(double dt_s, double diffusivity_m2_s, const NeighbourList& list,
-                      const Geometry& geo, std::span<const double> source,
+  ImplicitReport step(double dt_s, double diffusivity_m2_s, const Geometry& geo,
+                      std::span<const double> source,
                       std::span<const Boundary> boundary, double p_hydro_pa, bool cavitation,
                       double p_min_pa, std::span<double> p);
 
@@ -58,20 +57,19 @@ class ImplicitSystem {
 
  private:
   enum Fixed : std::uint8_t { free = 0, drained = 1, clamped = 2 };
-  void rebuild_pattern(const NeighbourList& list);
-  void assemble(double dt_s, double d_m2_s, const NeighbourList& list, const Geometry& geo,
-                std::span<const double> source, std::span<const double> p);
+  void rebuild_pattern(const Geometry& geo);
+  void assemble(double dt_s, double d_m2_s, const Geometry& geo, std::span<const double> source,
+                std::span<const double> p);
   /// b_i - (A d)_i of particle i's unconstrained equation (positive: it would rise).
-  double free_residual(int i, double dt_s, double d_m2_s, const NeighbourList& list,
-                       const Geometry& geo, std::span<const double> source,
-                       std::span<const double> p) const;
+  double free_residual(int i, double dt_s, double d_m2_s, const Geometry& geo,
+                       std::span<const double> source, std::span<const double> p) const;
 
   double tolerance_;
   unsigned max_iterations_;
   Eigen::SparseMatrix<double, Eigen::RowMajor, int> a_;
-  std::vector<int> diagonal_;  // index of A_ii in the values
-  std::uint64_t pattern_of_build_ = 0;
-  std::size_t pattern_particles_ = static_cast<std::size_t>(-1);
+  std::vector<int> diagonal_;   // index of A_ii in the values
+  std::vector<int> row_start_;  // value index of the geometry's pair k of row i: row_start_[i] + k
+  std::uint64_t pattern_of_geometry_ = static_cast<std::uint64_t>(-1);  // Geometry::version
   Eigen::VectorXd b_, d_, guess_;
   std::vector<Fixed> fixed_;
   std::vector<double> fixed_value_;  // the increment of a fixed particle

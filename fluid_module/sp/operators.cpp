@@ -1,14 +1,78 @@
 #include "sp/operators.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 namespace rockcut::fluid::sp {
 
-void gradient(const NeighbourList& list, const Geometry& geo, std::span<const double> a,
-              std::span<double> grad) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+namespace {
+
+// A pair of doubles, (x, y) of one vector, in one SSE2 register (GCC/Clang vector extension; on
+// other targets the compiler splits it). The two hot passes below do their x and y arithmetic in
+// one instruction each. Lane k of every vector operation is the scalar operation of component
+// k, in the same order, so the results keep the bits of the scalar formulas
+// (tests/fluid/operator_bits_test.cpp); SSE2 has no fused multiply-add that could change them.
+typedef double Vec2 __attribute__((vector_size(16)));
+
+inline Vec2 load2(const double* p) {
+  Vec2 v;
+  std::memcpy(&v, p, sizeof v);  // an unaligned load (movupd)
+  return v;
+}
+
+// The rows of divergence() and laplacian(), alone or together (kDiv, kLap). Every sum has the same
+// terms in the same order whichever of the two is computed, so the fused call gives the bits of
+// the separate ones. (Two sets of accumulators for even and odd pairs, to shorten the chains of
+// dependent additions, made the pass 7 % slower: with SSE2's 16 registers the sums spill.)
+template <bool kDiv, bool kLap>
+void divergence_laplacian_rows(const Geometry& geo, std::span<const double> vel,
+                               std::span<const double> a, std::span<double> div,
+                               std::span<double> lap) {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
+  const double* v = geo.volume.data();
+  const double* f = geo.f.data();
+  const double* inv = geo.l_inverse.data();
+  const double* x = geo.position.data();
+  const double* u = vel.data();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    // Divergence: G_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b with grad_i W_ij = -F_ij (x_j -
+    // x_i); div = trace(G L^{-1}). Row a of G is g_a = sum_j (v_j - v_i)_a w_ij with
+    // w_ij = -V_j F_ij (x_j - x_i). Laplacian (eq. 20): sum_j 2 V_j (a_i - a_j) F_ij.
+    Vec2 gx = {0.0, 0.0}, gy = {0.0, 0.0};  // (G_xx, G_xy), (G_yx, G_yy)
+    double l = 0.0;
+    const Vec2 xi = load2(x + 2 * i);
+    const Vec2 ui = kDiv ? load2(u + 2 * i) : Vec2{0.0, 0.0};
+    const double ai = kLap ? a[i] : 0.0;
+    for (int k = begin[i]; k < end[i]; ++k) {
+      const int j = nb[k];
+      if constexpr (kDiv) {
+        const double s = -v[j] * f[k];
+        const Vec2 du = load2(u + 2 * j) - ui;
+        const Vec2 w = s * (load2(x + 2 * j) - xi);
+        gx += du[0] * w;
+        gy += du[1] * w;
+      }
+      if constexpr (kLap) l += v[j] * (ai - a[j]) * f[k];
+    }
+    if constexpr (kDiv) {
+      const double* m = inv + 3 * i;
+      div[i] = gx[0] * m[0] + (gx[1] + gy[0]) * m[1] + gy[1] * m[2];
+    }
+    if constexpr (kLap) lap[i] = 2.0 * l;
+  }
+}
+
+}  // namespace
+
+void gradient(const Geometry& geo, std::span<const double> a, std::span<double> grad) {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
   const double* v = geo.volume.data();
   const double* inv = geo.l_inverse.data();
   const double* x = geo.position.data();
@@ -17,7 +81,7 @@ void gradient(const NeighbourList& list, const Geometry& geo, std::span<const do
     // grad_i W_ij = F_ij (x_i - x_j) = -F_ij (dx, dy).
     double sx = 0.0, sy = 0.0;
     const double ai = a[i], xi = x[2 * i], yi = x[2 * i + 1];
-    for (int k = off[i]; k < off[i + 1]; ++k) {
+    for (int k = begin[i]; k < end[i]; ++k) {
       const int j = nb[k];
       const double s = v[j] * (a[j] - ai) * -geo.f[k];
       sx += s * (x[2 * j] - xi);
@@ -29,76 +93,27 @@ void gradient(const NeighbourList& list, const Geometry& geo, std::span<const do
   }
 }
 
-namespace {
-
-// The rows of divergence() and laplacian(), alone or together (kDiv, kLap). Every sum has the same
-// terms in the same order whichever of the two is computed, so the fused call gives the bits of
-// the separate ones. (Two sets of accumulators for even and odd pairs, to shorten the chains of
-// dependent additions, made the pass 7 % slower: with SSE2's 16 registers the sums spill.)
-template <bool kDiv, bool kLap>
-void divergence_laplacian_rows(const NeighbourList& list, const Geometry& geo,
-                               std::span<const double> vel, std::span<const double> a,
-                               std::span<double> div, std::span<double> lap) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
-  const double* v = geo.volume.data();
-  const double* f = geo.f.data();
-  const double* inv = geo.l_inverse.data();
-  const double* x = geo.position.data();
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    // Divergence: G_ab = sum_j V_j (v_j - v_i)_a (grad_i W_ij)_b with grad_i W_ij = -F_ij (x_j -
-    // x_i); div = trace(G L^{-1}). Laplacian (eq. 20): sum_j 2 V_j (a_i - a_j) F_ij.
-    double gxx = 0.0, gxy = 0.0, gyx = 0.0, gyy = 0.0, l = 0.0;
-    const double xi = x[2 * i], yi = x[2 * i + 1];
-    const double ux = kDiv ? vel[2 * i] : 0.0, uy = kDiv ? vel[2 * i + 1] : 0.0;
-    const double ai = kLap ? a[i] : 0.0;
-    for (int k = off[i]; k < off[i + 1]; ++k) {
-      const int j = nb[k];
-      if constexpr (kDiv) {
-        const double s = -v[j] * f[k];
-        const double du = vel[2 * j] - ux, dv = vel[2 * j + 1] - uy;
-        const double wx = s * (x[2 * j] - xi), wy = s * (x[2 * j + 1] - yi);
-        gxx += du * wx;
-        gxy += du * wy;
-        gyx += dv * wx;
-        gyy += dv * wy;
-      }
-      if constexpr (kLap) l += v[j] * (ai - a[j]) * f[k];
-    }
-    if constexpr (kDiv) {
-      const double* m = inv + 3 * i;
-      div[i] = gxx * m[0] + (gxy + gyx) * m[1] + gyy * m[2];
-    }
-    if constexpr (kLap) lap[i] = 2.0 * l;
-  }
+void divergence(const Geometry& geo, std::span<const double> vel, std::span<double> div) {
+  divergence_laplacian_rows<true, false>(geo, vel, {}, div, {});
 }
 
-}  // namespace
-
-void divergence(const NeighbourList& list, const Geometry& geo, std::span<const double> vel,
-                std::span<double> div) {
-  divergence_laplacian_rows<true, false>(list, geo, vel, {}, div, {});
+void laplacian(const Geometry& geo, std::span<const double> a, std::span<double> lap) {
+  divergence_laplacian_rows<false, true>(geo, {}, a, {}, lap);
 }
 
-void laplacian(const NeighbourList& list, const Geometry& geo, std::span<const double> a,
-               std::span<double> lap) {
-  divergence_laplacian_rows<false, true>(list, geo, {}, a, {}, lap);
+void divergence_laplacian(const Geometry& geo, std::span<const double> vel,
+                          std::span<const double> a, std::span<double> div,
+                          std::span<double> lap) {
+  divergence_laplacian_rows<true, true>(geo, vel, a, div, lap);
 }
 
-void divergence_laplacian(const NeighbourList& list, const Geometry& geo,
-                          std::span<const double> vel, std::span<const double> a,
-                          std::span<double> div, std::span<double> lap) {
-  divergence_laplacian_rows<true, true>(list, geo, vel, a, div, lap);
-}
-
-void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
-                            std::span<const double> area, std::span<const double> q,
-                            std::span<double> force, std::span<double> work) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+void adjoint_pressure_force(const Geometry& geo, std::span<const double> area,
+                            std::span<const double> q, std::span<double> force,
+                            std::span<double> work) {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
   const double* v = geo.volume.data();
   const double* inv = geo.l_inverse.data();
   const double* x = geo.position.data();
@@ -123,37 +138,35 @@ void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
     // (the implied barrier: every P_j is written before any row reads it)
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
-      const double xi = x[2 * i], yi = x[2 * i + 1];
-      double s1x = 0.0, s1y = 0.0, s2x = 0.0, s2y = 0.0;
-      for (int k = off[i]; k < off[i + 1]; ++k) {
+      const Vec2 xi = load2(x + 2 * i);
+      Vec2 s1 = {0.0, 0.0}, s2 = {0.0, 0.0};
+      for (int k = begin[i]; k < end[i]; ++k) {
         const int j = nb[k];
-        const double fx = f[k] * (x[2 * j] - xi), fy = f[k] * (x[2 * j + 1] - yi);
-        s1x += v[j] * fx;
-        s1y += v[j] * fy;
-        const double* pj = p + 3 * j;
-        s2x += pj[0] * fx + pj[1] * fy;
-        s2y += pj[1] * fx + pj[2] * fy;
+        const Vec2 fd = f[k] * (load2(x + 2 * j) - xi);  // (fx, fy) = F_ij (x_j - x_i)
+        s1 += v[j] * fd;
+        // P_j is symmetric (xx, xy, yy): (P_xx fx + P_xy fy, P_xy fx + P_yy fy).
+        s2 += load2(p + 3 * j) * fd[0] + load2(p + 3 * j + 1) * fd[1];
       }
       const double* pi = p + 3 * i;  // A_i q_i L_i^{-1}
-      force[2 * i] = (pi[0] * s1x + pi[1] * s1y) + v[i] * s2x;
-      force[2 * i + 1] = (pi[1] * s1x + pi[2] * s1y) + v[i] * s2y;
+      force[2 * i] = (pi[0] * s1[0] + pi[1] * s1[1]) + v[i] * s2[0];
+      force[2 * i + 1] = (pi[1] * s1[0] + pi[2] * s1[1]) + v[i] * s2[1];
     }
   }
 }
 
-void interpolate(const NeighbourList& list, const Geometry& geo, double w0,
-                 std::span<const double> a, std::span<const double> grad,
-                 std::span<double> out) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+void interpolate(const Geometry& geo, double w0, std::span<const double> a,
+                 std::span<const double> grad, std::span<double> out) {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
   const double* v = geo.volume.data();
   const double* x = geo.position.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double num = v[i] * a[i] * w0, den = v[i] * w0, mx = 0.0, my = 0.0;
     const double xi = x[2 * i], yi = x[2 * i + 1];
-    for (int k = off[i]; k < off[i + 1]; ++k) {
+    for (int k = begin[i]; k < end[i]; ++k) {
       const int j = nb[k];
       const double vw = v[j] * geo.w[k];
       num += vw * a[j];
@@ -165,15 +178,16 @@ void interpolate(const NeighbourList& list, const Geometry& geo, double w0,
   }
 }
 
-void volume_sum(const NeighbourList& list, const Geometry& geo, double w0, std::span<double> out) {
-  const int n = static_cast<int>(list.particles());
-  const int* off = list.offsets().data();
-  const int* nb = list.neighbours().data();
+void volume_sum(const Geometry& geo, double w0, std::span<double> out) {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
   const double* v = geo.volume.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     double s = v[i] * w0;
-    for (int k = off[i]; k < off[i + 1]; ++k) s += v[nb[k]] * geo.w[k];
+    for (int k = begin[i]; k < end[i]; ++k) s += v[nb[k]] * geo.w[k];
     out[i] = s;
   }
 }

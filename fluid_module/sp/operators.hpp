@@ -1,12 +1,11 @@
 // The SP operators on a Geometry (paper section 3.2). Each is one streaming pass over the pairs
-// that writes one value per particle (rows are independent: no atomics would be needed to split
-// them between threads).
+// inside the support (the geometry's rows) that writes one value per particle (rows are
+// independent: no atomics would be needed to split them between threads).
 #pragma once
 
 #include <span>
 
 #include "sp/geometry.hpp"
-#include "sp/neighbours.hpp"
 
 namespace rockcut::fluid::sp {
 
@@ -14,13 +13,13 @@ namespace rockcut::fluid::sp {
 ///   grad a_i = L_i^{-1} sum_j V_j (a_j - a_i) grad_i W_ij.
 /// Exact for linear fields wherever L_i is well conditioned (inside and at surfaces).
 /// `grad` gets 2 values per particle.
-void gradient(const NeighbourList& list, const Geometry& geo, std::span<const double> a,
+void gradient(const Geometry& geo, std::span<const double> a,
               std::span<double> grad);
 
 /// Corrected divergence of a vector field (eq. 17): the trace of the CSPM velocity gradient
 ///   (grad v)_i = [sum_j V_j (v_j - v_i) (x) grad_i W_ij] L_i^{-1}.
 /// `v` has 2 values per particle. Exact for linear fields.
-void divergence(const NeighbourList& list, const Geometry& geo, std::span<const double> v,
+void divergence(const Geometry& geo, std::span<const double> v,
                 std::span<double> div);
 
 /// The pore-pressure force that is the negative adjoint of `divergence` (energy-consistent):
@@ -31,8 +30,7 @@ void divergence(const NeighbourList& list, const Geometry& geo, std::span<const 
 /// cavitation clamp only take energy out). Inside, it approximates -A_k grad q_k (the symmetric
 /// SPH form); its forces sum to zero. `force` gets 2 values per particle (overwritten); `work`
 /// is scratch of 3 values per particle (A_i q_i L_i^{-1}).
-void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
-                            std::span<const double> area, std::span<const double> q,
+void adjoint_pressure_force(const Geometry& geo, std::span<const double> area, std::span<const double> q,
                             std::span<double> force, std::span<double> work);
 
 /// The Cleary & Monaghan (Brookshaw) Laplacian of eq. 20 for a uniform coefficient, with the SP
@@ -40,23 +38,22 @@ void adjoint_pressure_force(const NeighbourList& list, const Geometry& geo,
 ///   lap a_i = sum_j 2 V_j (a_i - a_j) F_ij,   F_ij = (n_ij . grad_i W_ij) / r_ij.
 /// Conservative (sum_i V_i lap a_i = 0 for any a), hence the natural no-flux condition at free
 /// surfaces (section 3.3).
-void laplacian(const NeighbourList& list, const Geometry& geo, std::span<const double> a,
+void laplacian(const Geometry& geo, std::span<const double> a,
                std::span<double> lap);
 
 /// divergence(vel) into `div` and laplacian(a) into `lap` in one pass over the pairs, with the
 /// same bits as the two calls (the explicit model's step needs both on the same geometry).
-void divergence_laplacian(const NeighbourList& list, const Geometry& geo,
-                          std::span<const double> vel, std::span<const double> a,
+void divergence_laplacian(const Geometry& geo, std::span<const double> vel, std::span<const double> a,
                           std::span<double> div, std::span<double> lap);
 
 /// CSPM interpolation (eq. 15) with the first-order term of Chen et al. (1999):
 ///   a*_i = [sum_j V_j a_j W_ij - grad a_i . sum_j V_j (x_j - x_i) W_ij] / sum_j V_j W_ij,
 /// j including i. Exact for linear fields when `grad` is their CSPM gradient.
-void interpolate(const NeighbourList& list, const Geometry& geo, double w0,
+void interpolate(const Geometry& geo, double w0,
                  std::span<const double> a, std::span<const double> grad,
                  std::span<double> out);
 
 /// sum_j V_j W_ij including the self term V_i W(0): the partition of unity, ~1 inside.
-void volume_sum(const NeighbourList& list, const Geometry& geo, double w0, std::span<double> out);
+void volume_sum(const Geometry& geo, double w0, std::span<double> out);
 
 }  // namespace rockcut::fluid::sp

@@ -148,9 +148,9 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     const std::span<const double> field = from_displacement ? k.displacement : k.velocity_half;
     check_size(field, 2 * n, from_displacement ? "displacement" : "velocity_half");
     if (laplacian_in_step_) {
-      divergence_laplacian(list_, geo_, field, pressure_, strain_rate_, laplacian_);
+      divergence_laplacian(geo_, field, pressure_, strain_rate_, laplacian_);
     } else {
-      divergence(list_, geo_, field, strain_rate_);
+      divergence(geo_, field, strain_rate_);
     }
     if (from_displacement) {
       for (double& e : strain_rate_) e /= dt_s;
@@ -173,11 +173,11 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   if (params_.force_form == ForceForm::adjoint) {
     // The excess pressure acts on share_ (update_share).
     for (std::size_t i = 0; i < n; ++i) excess_[i] = pressure_[i] - params_.p_hydro_pa;
-    adjoint_pressure_force(list_, geo_, share_, excess_, force, work_);
+    adjoint_pressure_force(geo_, share_, excess_, force, work_);
     return;
   }
   // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].
-  gradient(list_, geo_, pressure_, grad_);
+  gradient(geo_, pressure_, grad_);
   for (std::size_t i = 0; i < n; ++i) {
     force[2 * i] = -grad_[2 * i] * area_[i];
     force[2 * i + 1] = -grad_[2 * i + 1] * area_[i];

@@ -32,8 +32,8 @@ TEST(AdjointForce, IsTheNegativeTransposeOfTheDivergence) {
   for (std::size_t i = 0; i < n; ++i) {
     area[i] = std::numbers::pi * s.particles.radius[i] * s.particles.radius[i];
   }
-  sp::divergence(s.list(), s.geo(), u, div);
-  sp::adjoint_pressure_force(s.list(), s.geo(), area, q, force, work);
+  sp::divergence(s.geo(), u, div);
+  sp::adjoint_pressure_force(s.geo(), area, q, force, work);
   double fluid_work = 0.0, energy = 0.0, scale = 0.0;
   for (std::size_t k = 0; k < 2 * n; ++k) fluid_work += force[k] * u[k];
   for (std::size_t i = 0; i < n; ++i) {
@@ -57,11 +57,11 @@ TEST(SpOperators, GiveTheSameBitsWithOneAndTwoThreads) {
     omp_set_num_threads(threads);
     std::vector<double> out(2 * n + 2 * n + n + n + 2 * n), work(3 * n);
     std::span<double> all(out);
-    sp::adjoint_pressure_force(s.list(), s.geo(), area, q, all.subspan(0, 2 * n), work);
-    sp::gradient(s.list(), s.geo(), q, all.subspan(2 * n, 2 * n));
-    sp::divergence(s.list(), s.geo(), u, all.subspan(4 * n, n));
-    sp::laplacian(s.list(), s.geo(), q, all.subspan(5 * n, n));
-    sp::divergence_laplacian(s.list(), s.geo(), u, q, all.subspan(6 * n, n),
+    sp::adjoint_pressure_force(s.geo(), area, q, all.subspan(0, 2 * n), work);
+    sp::gradient(s.geo(), q, all.subspan(2 * n, 2 * n));
+    sp::divergence(s.geo(), u, all.subspan(4 * n, n));
+    sp::laplacian(s.geo(), q, all.subspan(5 * n, n));
+    sp::divergence_laplacian(s.geo(), u, q, all.subspan(6 * n, n),
                              all.subspan(7 * n, n));
     omp_set_num_threads(1);
     return out;
@@ -81,9 +81,9 @@ TEST(SpOperators, OnePassDivergenceAndLaplacianGiveTheBitsOfTheTwoPasses) {
   std::vector<double> u(2 * n), q(n), div(n), lap(n), div1(n), lap1(n);
   for (double& v : u) v = uni(rng);
   for (double& v : q) v = 1e6 * uni(rng);
-  sp::divergence(s.list(), s.geo(), u, div);
-  sp::laplacian(s.list(), s.geo(), q, lap);
-  sp::divergence_laplacian(s.list(), s.geo(), u, q, div1, lap1);
+  sp::divergence(s.geo(), u, div);
+  sp::laplacian(s.geo(), q, lap);
+  sp::divergence_laplacian(s.geo(), u, q, div1, lap1);
   for (std::size_t i = 0; i < n; ++i) {
     ASSERT_EQ(div[i], div1[i]) << "particle " << i;
     ASSERT_EQ(lap[i], lap1[i]) << "particle " << i;
@@ -110,7 +110,7 @@ TEST(AdjointForce, ConservesMomentumAndMatchesTheGradientInside) {
     q[i] = gx * s.particles.x(i) + gy * s.particles.y(i);
     area[i] = phi * s.geo().volume[i];
   }
-  sp::adjoint_pressure_force(s.list(), s.geo(), area, q, force, work);
+  sp::adjoint_pressure_force(s.geo(), area, q, force, work);
   double sx = 0.0, sy = 0.0, magnitude = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     sx += force[2 * i];

@@ -30,7 +30,7 @@ Counts check_linear_gradient(const Initialised& s) {
   const double c0 = 2e5, cx = 3e6, cy = -7e6;  // [Pa], [Pa/m]: a pore-pressure-like field
   std::vector<double> a(p.size()), grad(2 * p.size());
   for (std::size_t i = 0; i < p.size(); ++i) a[i] = c0 + cx * p.x(i) + cy * p.y(i);
-  sp::gradient(s.list(), s.geo(), a, grad);
+  sp::gradient(s.geo(), a, grad);
   const double norm = std::hypot(cx, cy);
   Counts c;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -70,7 +70,7 @@ TEST(Cspm, DivergenceOfLinearVelocityIsExact) {
     v[2 * i] = 0.3 - 0.7 * p.x(i) + 1.1 * p.y(i);
     v[2 * i + 1] = -0.1 + 0.4 * p.x(i) + 0.2 * p.y(i);
   }
-  sp::divergence(s.list(), s.geo(), v, div);
+  sp::divergence(s.geo(), v, div);
   for (std::size_t i = 0; i < p.size(); ++i) {
     // |grad v| ~ 1.4 1/s is the scale of the error.
     EXPECT_LT(std::abs(div[i] - (-0.5)) / 1.4, kExact) << "particle " << i;
@@ -82,8 +82,8 @@ TEST(Cspm, InterpolationOfLinearFieldIsExact) {
   const Particles& p = s.particles;
   std::vector<double> a(p.size()), grad(2 * p.size()), out(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) a[i] = 2e5 + 3e6 * p.x(i) - 7e6 * p.y(i);
-  sp::gradient(s.list(), s.geo(), a, grad);
-  sp::interpolate(s.list(), s.geo(), sp::WendlandC2(0.0015).w0(), a, grad, out);
+  sp::gradient(s.geo(), a, grad);
+  sp::interpolate(s.geo(), sp::WendlandC2(0.0015).w0(), a, grad, out);
   // Relative to the variation of the field over a support, |grad a| h ~ 1e4 Pa.
   for (std::size_t i = 0; i < p.size(); ++i) {
     EXPECT_LT(std::abs(out[i] - a[i]) / (7.6e6 * 0.0015), kExact) << "particle " << i;
@@ -97,7 +97,7 @@ TEST(Cspm, InterpolationWithoutCorrectionIsOnlyFirstOrderAtTheSurface) {
   const Particles& p = s.particles;
   std::vector<double> a(p.size()), zero(2 * p.size(), 0.0), out(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) a[i] = 3e6 * p.x(i);
-  sp::interpolate(s.list(), s.geo(), sp::WendlandC2(0.0015).w0(), a, zero, out);
+  sp::interpolate(s.geo(), sp::WendlandC2(0.0015).w0(), a, zero, out);
   double worst = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) worst = std::max(worst, std::abs(out[i] - a[i]));
   EXPECT_GT(worst / (3e6 * 0.0015), 0.05);
@@ -117,7 +117,7 @@ TEST(Cspm, ChainFallsBackToItsAxisAndLoneParticleToZero) {
   const Initialised s(p, 0.0015);
   std::vector<double> a(p.size()), grad(2 * p.size());
   for (std::size_t i = 0; i < p.size(); ++i) a[i] = 1e5 + 2e6 * p.x(i) - 5e5 * p.y(i);
-  sp::gradient(s.list(), s.geo(), a, grad);
+  sp::gradient(s.geo(), a, grad);
   const double along = (2e6 - 5e5) / std::sqrt(2.0);  // derivative along (1, 1) / sqrt 2
   for (int i = 0; i < 5; ++i) {
     EXPECT_EQ(s.geo().correction[i], Correction::projected);

@@ -49,8 +49,8 @@ Errors stale_errors(const Initialised& at, const Particles& now) {
     u[2 * i] = exx * now.x(i) + exy * now.y(i);
     u[2 * i + 1] = exy * now.x(i) + eyy * now.y(i);
   }
-  sp::gradient(at.list(), at.geo(), p, grad);
-  sp::divergence(at.list(), at.geo(), u, div);
+  sp::gradient(at.geo(), p, grad);
+  sp::divergence(at.geo(), u, div);
   Errors e;
   std::size_t count = 0;
   for (std::size_t i = 0; i < n; ++i) {

@@ -14,7 +14,7 @@ using sp::Boundary;
 
 std::vector<double> volume_sums(const Initialised& s, double h) {
   std::vector<double> out(s.particles.size());
-  sp::volume_sum(s.list(), s.geo(), sp::WendlandC2(h).w0(), out);
+  sp::volume_sum(s.geo(), sp::WendlandC2(h).w0(), out);
   return out;
 }
 

@@ -201,6 +201,8 @@ def main():
                     jobs[run_dir(a.out, ladder, label, seed)] = (sets, seed)
         # The most expensive first, so that two cores stay busy to the end.
         order = sorted(jobs, key=lambda d: ("size=0.5" not in d, "dt_safety=0.0" not in d))
+        if a.jobs > 1:  # runs side by side: no polling before sleeping (proto/wire/spin_wait.hpp)
+            os.environ.setdefault("ROCKCUT_WIRE_SPIN_US", "0")
         with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
             for d in pool.map(lambda d: run(a.coupler, d, *jobs[d]), order):
                 s = read(d)

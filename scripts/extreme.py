@@ -109,6 +109,8 @@ def main():
         if not a.no_halve:
             jobs.append((s, os.path.join(a.out, name + "_dt_half"), ["--set", "time.dt_safety=0.1"]))
     rows = []
+    if a.jobs > 1:  # runs side by side: no polling before sleeping (proto/wire/spin_wait.hpp)
+        os.environ.setdefault("ROCKCUT_WIRE_SPIN_US", "0")
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
         futures = [pool.submit(run_case, a.coupler, *j) for j in jobs]
         for f in concurrent.futures.as_completed(futures):

@@ -102,6 +102,8 @@ def check(name, coupler):
 
 
 def measure(names, coupler, seeds, threads, jobs):
+    if jobs > 1:  # runs side by side: no polling before sleeping (proto/wire/spin_wait.hpp)
+        os.environ.setdefault("ROCKCUT_WIRE_SPIN_US", "0")
     for name in names:
         case = load_case(name)
         variants = [("dem.specimen.seed=%d" % s, "dem.threads=%d" % t) for s in seeds for t in threads]

@@ -231,6 +231,8 @@ def finish_run(args, name, value, seed, proc, log, t0, cmd):
 def run_sweep(args, name, values, seeds):
     """Runs every value (and seed), --jobs at a time. Returns True if all exited with 0."""
     jobs = args.jobs or max(1, cpu_count() // dem_threads(args.case, args.set))
+    if jobs > 1:  # runs side by side: no polling before sleeping (proto/wire/spin_wait.hpp)
+        os.environ.setdefault("ROCKCUT_WIRE_SPIN_US", "0")
     # Seed by seed: the first seed's whole curve is done before the second seed starts.
     pending = [(v, s) for s in (seeds or [None]) for v in values]
     print(f"sweep: {len(pending)} runs of {args.case} ({name} = {', '.join(values)}"

@@ -4,36 +4,52 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <thread>
 
 namespace rockcut::wire {
 
-long spin_budget_us() {
-  static const long budget = [] {
-    const char* value = std::getenv("ROCKCUT_WIRE_SPIN_US");
-    if (!value) return 0L;
+long parse_spin_budget_us(const char* value, unsigned cores) {
+  if (value) {
     char* end = nullptr;
     const long us = std::strtol(value, &end, 10);
-    return end != value && *end == '\0' && us > 0 ? us : 0L;
-  }();
+    if (end != value && *end == '\0' && us >= 0) return us;
+  }
+  return cores >= 2 ? kDefaultSpinUs : 0L;
+}
+
+long spin_budget_us() {
+  static const long budget =
+      parse_spin_budget_us(std::getenv("ROCKCUT_WIRE_SPIN_US"), std::thread::hardware_concurrency());
   return budget;
 }
 
-void spin_until_readable(zmq::socket_t& socket) { spin_until_readable(socket, spin_budget_us()); }
+bool spin_until_readable(zmq::socket_t& socket) {
+  return spin_until_readable(socket, spin_budget_us());
+}
 
-void spin_until_readable(zmq::socket_t& socket, long budget) {
-  if (budget <= 0) return;
+bool spin_until_readable(zmq::socket_t& socket, long budget) {
+  if (budget <= 0) return false;
+
   using clock = std::chrono::steady_clock;
-  const auto end = clock::now() + std::chrono::microseconds(budget);
-  do {
+  const auto start = clock::now();
+  const auto end = start + std::chrono::microseconds(budget);
+  auto before = start;
+  while (true) {
     zmq::pollitem_t item{socket.handle(), 0, ZMQ_POLLIN, 0};
     try {
       zmq::poll(&item, 1, std::chrono::milliseconds(0));
     } catch (const zmq::error_t&) {
-      return;  // EINTR and the rest: the caller's blocking wait handles them
+      return false;  // EINTR and the rest: the caller's blocking wait handles them
     }
-    if (item.revents & ZMQ_POLLIN) return;
-    sched_yield();  // a module thread that has work gets the core
-  } while (clock::now() < end);
+    if (item.revents & ZMQ_POLLIN) return false;
+    sched_yield();  // a thread that has work on this core gets it
+    const auto now = clock::now();
+    // The yield handed the core to a thread with work (another run, or this run's own module),
+    // or the thread was preempted: the core is wanted, so stop polling and sleep.
+    if (now - before > std::chrono::microseconds(kContendedPollUs)) return true;
+    if (now >= end) return false;
+    before = now;
+  }
 }
 
 }  // namespace rockcut::wire

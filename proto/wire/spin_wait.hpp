@@ -4,24 +4,37 @@
 // hundred microseconds, four messages per exchange, so those wake-ups are a large part of its
 // wall time. Polling first, yielding the core between polls, catches a reply that comes soon.
 //
-// Opt-in, like GOMP_SPINCOUNT: ROCKCUT_WIRE_SPIN_US (microseconds, default 0 = sleep at once).
-// Measured (bench/README.md, bench_coupled.py): with 200 us the reduced saturated cut takes a third
-// less wall time inproc and a sixth less over ipc; at paper scale, where both modules run two
-// OpenMP threads on the two cores, it made no difference beyond the noise. Runs that share the
-// cores with other runs (scripts/sweep --jobs 2) should leave it off.
+// On by default on two or more cores (kDefaultSpinUs); ROCKCUT_WIRE_SPIN_US (microseconds, 0 =
+// sleep at once) overrides it, like GOMP_SPINCOUNT for OpenMP. The poll stops early when the core
+// is wanted: a poll that comes back more than kContendedPollUs after the last one means the yield
+// gave the core to a thread with work, e.g. of another run sharing the cores. Measured
+// (bench/README.md, session 11): the default scene 64-73 s without polling, 47-59 s with 200 us;
+// two reduced cuts side by side 6.5-6.8 s without, 8.6-9.6 s with polling that did not stop early.
 #pragma once
 
 #include <zmq.hpp>
 
 namespace rockcut::wire {
 
-/// The polling budget from ROCKCUT_WIRE_SPIN_US [us], read once; 0 if unset or not a number.
+/// The polling budget when ROCKCUT_WIRE_SPIN_US is not set [us].
+inline constexpr long kDefaultSpinUs = 200;
+/// A gap between two polls longer than this [us] means another thread had the core.
+inline constexpr long kContendedPollUs = 50;
+
+/// The budget for ROCKCUT_WIRE_SPIN_US = `value` (nullptr: unset) on a machine with `cores`
+/// cores [us]: a non-negative integer is taken as given; unset or anything else gives
+/// kDefaultSpinUs on two or more cores and 0 on one, where a polling thread only delays the
+/// thread it waits for.
+long parse_spin_budget_us(const char* value, unsigned cores);
+
+/// The polling budget of this process [us], read once from ROCKCUT_WIRE_SPIN_US.
 long spin_budget_us();
 
 /// Polls `socket` for input for up to spin_budget_us(), yielding the core between polls. Returns
-/// when a message is waiting or the budget is spent; the caller then receives or blocks as before.
-void spin_until_readable(zmq::socket_t& socket);
+/// when a message is waiting, the budget is spent, or the core is wanted by another thread; the
+/// caller then receives or blocks as before. Returns true in the last case (for tests).
+bool spin_until_readable(zmq::socket_t& socket);
 /// The same with an explicit budget [us] (0: return at once).
-void spin_until_readable(zmq::socket_t& socket, long budget_us);
+bool spin_until_readable(zmq::socket_t& socket, long budget_us);
 
 }  // namespace rockcut::wire

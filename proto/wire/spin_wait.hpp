@@ -8,8 +8,9 @@
 // sleep at once) overrides it, like GOMP_SPINCOUNT for OpenMP. The poll stops early when the core
 // is wanted: a poll that comes back more than kContendedPollUs after the last one means the yield
 // gave the core to a thread with work, e.g. of another run sharing the cores. Measured
-// (bench/README.md, session 11): the default scene 64-73 s without polling, 47-59 s with 200 us;
-// two reduced cuts side by side 6.5-6.8 s without, 8.6-9.6 s with polling that did not stop early.
+// (bench/README.md, session 11): the default scene 63-64 s without polling, 52-54 s with 200 us;
+// two 10 mm reduced cuts side by side 7.3-8.0 s without, 8.8-9.2 s with (6.5-6.8 against
+// 8.6-9.6 s when the poll did not stop early), so scripts that run jobs side by side set 0.
 #pragma once
 
 #include <zmq.hpp>

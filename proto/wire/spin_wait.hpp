@@ -9,8 +9,8 @@
 // is wanted: a poll that comes back more than kContendedPollUs after the last one means the yield
 // gave the core to a thread with work, e.g. of another run sharing the cores. Measured
 // (bench/README.md, session 11): the default scene 63-64 s without polling, 52-54 s with 200 us;
-// two 10 mm reduced cuts side by side 7.3-8.0 s without, 8.8-9.2 s with (6.5-6.8 against
-// 8.6-9.6 s when the poll did not stop early), so scripts that run jobs side by side set 0.
+// two 10 mm reduced cuts side by side 6.9-7.8 s each without, 8.3-9.0 s with (6.1-6.6 against
+// 8.0-9.3 s when the poll did not stop early), so scripts that run jobs side by side set 0.
 #pragma once
 
 #include <zmq.hpp>

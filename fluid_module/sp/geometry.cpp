@@ -137,7 +137,8 @@ void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
   const std::size_t pairs = list.pairs();
   // Sizes change only with the particle count or a rebuild; resize keeps the capacity.
   geo.position.assign(position.begin(), position.end());
-  geo.row_begin.assign(list.offsets().begin(), list.offsets().end() - (n > 0 ? 1 : 0));
+  geo.row_begin.assign(list.offsets().begin(),
+                       list.offsets().begin() + static_cast<std::ptrdiff_t>(n));
   geo.row_end.resize(n);
   geo.neighbours.resize(pairs);
   geo.w.resize(pairs);

@@ -3,10 +3,10 @@
 // (sp/operators.hpp) and the models need is computed here once per step, pair by pair in the CSR
 // order of the neighbour list.
 //
-// Per pair only W and F are stored (16 bytes); the passes recompute x_j - x_i from the positions,
-// which costs two loads of a cache line they read anyway. Storing the differences too doubled the
-// memory traffic of every pass, and the passes are bound by it (58,000 particles: 1.3 million
-// listed pairs).
+// Per pair only W, F and the neighbour index are stored (20 bytes); the passes recompute x_j - x_i
+// from the positions, which costs two loads of a cache line they read anyway. Storing the
+// differences too doubled the memory traffic of every pass, and the passes are bound by it (58,000
+// particles: 1.3 million listed pairs).
 //
 // Only the pairs inside the support are kept. The neighbour list reaches 1.1 h (its skin, so that
 // it is rebuilt rarely), and the ring from h to 1.1 h holds about a sixth of its pairs, all with

@@ -12,7 +12,8 @@ StabilityLimit ImplicitModel::diffusion_limit() const {
   return {"implicit_accuracy", params_.max_diffusion_number * h * h / diffusivity_m2_s_,
           "accuracy, not stability: max_diffusion_number h^2 / D with max_diffusion_number = " +
               fmt(params_.max_diffusion_number) + ", h = " + fmt(h) + " m, D = " +
-              fmt(diffusivity_m2_s_) + " m^2/s"};
+              fmt(diffusivity_m2_s_) + " m^2/s",
+          /*lag_only=*/false, /*remedy=*/{}};
 }
 
 void ImplicitModel::advance(double dt_s) {

@@ -46,7 +46,7 @@ std::vector<StabilityLimit> PorePressureModel::limits() const {
                      fmt(kFluidStiffnessC) + ", local damping alpha_d = " +
                      fmt(params_.local_damping) + ", m_min = " + fmt(m_min) +
                      " kg/m, alpha M = " + fmt(stiffness) + " Pa; binds only N > 1",
-                 /*lag_only=*/true});
+                 /*lag_only=*/true, /*remedy=*/{}});
   return out;
 }
 

@@ -150,10 +150,6 @@ void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
   geo.div_r.resize(n);
   geo.normal.resize(2 * n);
   pair_kernels(list, kernel, geo.position.data(), geo);
-  geo.pairs_inside = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    geo.pairs_inside += static_cast<std::size_t>(geo.row_end[i] - geo.row_begin[i]);
-  }
   for (unsigned k = 0; k < volume_iterations; ++k) refine_volumes(kernel.w0(), geo);
   correction_matrices(lucy_volume, geo);
   ++geo.version;

@@ -53,9 +53,14 @@ struct Geometry {
   std::vector<double> scratch; ///< per particle, for the volume iterations
 
   std::size_t particles() const { return volume.size(); }
-  /// The pairs inside the support, both directions.
-  std::size_t pairs() const { return pairs_inside; }
-  std::size_t pairs_inside = 0;
+  /// The pairs inside the support, both directions (counted over the rows).
+  std::size_t pairs() const {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < row_end.size(); ++i) {
+      count += static_cast<std::size_t>(row_end[i] - row_begin[i]);
+    }
+    return count;
+  }
   /// Counts the geometries computed into this object (the implicit model's matrix pattern
   /// follows the rows and is rebuilt when this changes).
   std::uint64_t version = 0;

@@ -96,7 +96,8 @@ double ImplicitSystem::free_residual(int i, double dt_s, double d_m2_s, const Ge
   return dt_s * (v[i] * source[i] - d_m2_s * flux) - lhs;
 }
 
-ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const Geometry& geo, std::span<const double> source,
+ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const Geometry& geo,
+                                    std::span<const double> source,
                                     std::span<const Boundary> boundary, double p_hydro_pa,
                                     bool cavitation, double p_min_pa, std::span<double> p) {
   const std::size_t n = geo.particles();

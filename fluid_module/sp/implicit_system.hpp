@@ -19,8 +19,8 @@
 // (positive residual), and repeat until the set no longer changes (docs/fluid_model.md).
 //
 // Memory: the matrix pattern (the geometry's pairs inside the support) is rebuilt only when the
-// geometry is recomputed; each step writes its values in place. Eigen's conjugate gradient allocates its four work vectors once per solve (per
-// step, never per particle).
+// geometry is recomputed; each step writes its values in place. Eigen's conjugate gradient
+// allocates its four work vectors once per solve (per step, never per particle).
 #pragma once
 
 #include <cstdint>

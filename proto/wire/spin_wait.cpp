@@ -18,8 +18,8 @@ long parse_spin_budget_us(const char* value, unsigned cores) {
 }
 
 long spin_budget_us() {
-  static const long budget =
-      parse_spin_budget_us(std::getenv("ROCKCUT_WIRE_SPIN_US"), std::thread::hardware_concurrency());
+  static const long budget = parse_spin_budget_us(std::getenv("ROCKCUT_WIRE_SPIN_US"),
+                                                  std::thread::hardware_concurrency());
   return budget;
 }
 

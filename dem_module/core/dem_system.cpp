@@ -47,7 +47,7 @@ DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet b
   }
   if (has_pairs_) rebuild_neighbours();
   compute_internal_forces();
-  finish_forces(0.0, /*advance_external=*/false);
+  finish_forces(0.0);
 }
 
 void DemSystem::rebuild_neighbours() {
@@ -196,13 +196,10 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
 }
 
 void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
-                             bool advance_external, ThreadSums& sums) {
+                             ThreadSums& sums) {
   double* f = particles_.force.data();
   double* q = particles_.torque.data();
-  double* fe = particles_.external_force.data();
-  // F^{n+1} = F^n + rate: the extrapolated force of this step, before it is used (both halves of
-  // the work trapezoid then see the force of their own step).
-  const double* rate = advance_external && !external_rate_.empty() ? external_rate_.data() : nullptr;
+  const double* fe = particles_.external_force.data();
   double* v = particles_.velocity.data();
   double* w = particles_.angular_velocity.data();
   const double* inv_m = particles_.inv_mass.data();
@@ -215,10 +212,6 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
   const bool body = has_body_forces_;
   double damping = 0.0, work = 0.0, gravity = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
-    if (rate) {
-      fe[2 * i] += rate[2 * i];
-      fe[2 * i + 1] += rate[2 * i + 1];
-    }
     double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
     const double vx = v[2 * i], vy = v[2 * i + 1];
     if (body) {
@@ -360,7 +353,7 @@ void DemSystem::reset_clamped_velocities() {
   }
 }
 
-void DemSystem::finish_forces(double kick_dt, bool advance_external) {
+void DemSystem::finish_forces(double kick_dt) {
   const std::size_t n = particles_.size();
   const int threads = settings_.threads;
   if (settings_.local_damping > 0) damping_force_.resize(3 * n);
@@ -369,7 +362,7 @@ void DemSystem::finish_forces(double kick_dt, bool advance_external) {
   {
     const int t = threads > 1 ? thread_id() : 0;
     const auto [p0, p1] = share(n, t, threads);
-    finish_range(p0, p1, kick_dt, advance_external, sums_[t]);
+    finish_range(p0, p1, kick_dt, sums_[t]);
   }
   book(total_sums());
   if (!clamped_.empty()) reset_clamped_velocities();
@@ -379,7 +372,7 @@ void DemSystem::step(double dt) {
   if (settings_.prescribed_motion || !has_pairs_) {
     begin_step(dt);
     compute_internal_forces();
-    finish_forces(settings_.prescribed_motion ? 0.0 : dt, /*advance_external=*/true);
+    finish_forces(settings_.prescribed_motion ? 0.0 : dt);
     in_split_step_ = false;
     return;
   }
@@ -431,7 +424,7 @@ void DemSystem::full_step(double dt) {
 #pragma omp single
       hold_clamped_groups();
     }
-    finish_range(p0, p1, dt, /*advance_external=*/true, sums_[t]);
+    finish_range(p0, p1, dt, sums_[t]);
   }
   const ThreadSums s = total_sums();
   book(s);
@@ -460,7 +453,7 @@ void DemSystem::finish_step(double dt, std::span<const double> external) {
   if (!in_split_step_) throw std::logic_error("finish_step without begin_step");
   hold_external_force(external);
   if (!internal_forces_current_) compute_internal_forces();
-  finish_forces(settings_.prescribed_motion ? 0.0 : dt, /*advance_external=*/false);
+  finish_forces(settings_.prescribed_motion ? 0.0 : dt);
   in_split_step_ = false;
 }
 
@@ -470,20 +463,6 @@ void DemSystem::hold_external_force(std::span<const double> external) {
                                 " values for " + std::to_string(particles_.size()) + " particles");
   }
   std::copy(external.begin(), external.end(), particles_.external_force.begin());
-  if (settings_.extrapolate_external_force) {
-    // rate = (F_new - F_prev) / (steps since F_prev): the slope of the last two exchanges. The
-    // first exchange has no slope yet.
-    const std::size_t m = external.size();
-    const std::uint64_t steps = steps_ - external_received_step_;
-    if (external_received_.size() != m || steps == 0) {
-      external_rate_.assign(m, 0.0);
-    } else {
-      const double inv = 1.0 / static_cast<double>(steps);
-      for (std::size_t k = 0; k < m; ++k) external_rate_[k] = (external[k] - external_received_[k]) * inv;
-    }
-    external_received_.assign(external.begin(), external.end());
-    external_received_step_ = steps_;
-  }
   if (!has_body_forces_) {
     has_body_forces_ = std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
   }
@@ -494,7 +473,7 @@ void DemSystem::set_external_force(std::span<const double> external) {
   // At rest (t = 0) a^n is re-evaluated from scratch; inside a split step the internal forces at
   // x^{n+1} may already have been computed while the fluid worked.
   if (!in_split_step_ || !internal_forces_current_) compute_internal_forces();
-  finish_forces(0.0, /*advance_external=*/false);
+  finish_forces(0.0);
 }
 
 double DemSystem::kinetic_energy() const {

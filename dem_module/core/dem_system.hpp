@@ -36,9 +36,6 @@ struct DemSettings {
   double skin_m = 0.0;         ///< Verlet skin of the neighbour list; 0: chosen from the radii
   int threads = 1;             ///< OpenMP threads of the pair loops
   std::optional<PrescribedMotion> prescribed_motion;
-  /// Between two exchanges the external (fluid) force is extrapolated linearly from the last two
-  /// it received, instead of held constant (coupling.fluid_force "linear").
-  bool extrapolate_external_force = false;
 };
 
 /// Discs whose vertical motion is prescribed (the clamped end layers of a UCS specimen): their y
@@ -110,8 +107,7 @@ class DemSystem {
   /// Thread t's share of the bonds and contacts, into its force view; thread 0 adds the walls.
   void pair_forces(int t, int threads, double dt, ThreadSums& sums);
   /// See finish_forces().
-  void finish_range(std::size_t begin, std::size_t end, double kick_dt, bool advance_external,
-                    ThreadSums& sums);
+  void finish_range(std::size_t begin, std::size_t end, double kick_dt, ThreadSums& sums);
   void start_sums(int threads);
   ThreadSums total_sums() const;
   /// Adds the work, damping and friction terms of `s` to the ledger.
@@ -121,9 +117,7 @@ class DemSystem {
   void set_prescribed_velocity(double t);
   /// total force = internal + external, then local damping (eq. 10); accumulates work terms;
   /// with kick_dt > 0 also the second half kick (eq. 8) in the same pass.
-  /// `advance_external`: a step between exchanges, which moves the extrapolated external force on
-  /// by its rate first (DemSettings::extrapolate_external_force).
-  void finish_forces(double kick_dt, bool advance_external);
+  void finish_forces(double kick_dt);
   /// Copies the fluid force into the held external force.
   void hold_external_force(std::span<const double> external);
   void rebuild_neighbours();
@@ -148,10 +142,6 @@ class DemSystem {
   std::vector<std::uint32_t> freed_pairs_;
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
   std::vector<ClampedGroup> clamped_;
-  // Linear extrapolation of the external force (DemSettings::extrapolate_external_force): the
-  // force last received, its rate per step since the exchange before, and that exchange's step.
-  std::vector<double> external_received_, external_rate_;  ///< [N/m], [N/m per step], 2 per particle
-  std::uint64_t external_received_step_ = 0;
   std::vector<ThreadSums> sums_;  ///< one per thread, for the pass in progress
   double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;

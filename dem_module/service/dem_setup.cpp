@@ -243,8 +243,6 @@ DemSetup build_dem(const rockcut::Scene& scene) {
   settings.local_damping = dem.local_damping();
   settings.skin_m = dem.skin_m();
   settings.threads = static_cast<int>(dem.threads());
-  settings.extrapolate_external_force =
-      scene.has_fluid() && scene.coupling().fluid_force() == "linear";
   if (dem.has_contact()) {
     settings.contact = {dem.contact().normal_stiffness_pa(), dem.contact().shear_stiffness_pa(),
                         dem.contact().friction()};

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "run/energy_budget.hpp"
 #include "run/expected_error.hpp"
 #include "run/signals.hpp"
 #include "run/verification.hpp"
@@ -425,6 +426,14 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
     return s.first == "energy_imbalance_rel";
   });
   if (imbalance != scalars_.end()) summary_.set("energy_imbalance_rel", imbalance->second);
+  const std::optional<EnergyBudget> budget = energy_budget(scalars_);
+  if (budget) {
+    for (const std::string& key : energy_budget_keys()) {
+      const auto it = std::find_if(scalars_.begin(), scalars_.end(),
+                                   [&](const auto& s) { return s.first == key; });
+      summary_.set(key, it->second);
+    }
+  }
   if (fluid_) summary_.set("fluid_busy_s", fluid_busy_s_ - fluid_busy0_s_);
   try {
     if (run_file_) {
@@ -440,6 +449,10 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
   if (imbalance != scalars_.end()) {
     std::fprintf(stderr, "energy     imbalance %.3g of the energy throughput (given = kinetic + "
                  "strain + damping + friction + broken bonds)\n", imbalance->second);
+  }
+  if (budget) {
+    std::fprintf(stderr, "energy     %s\n",
+                 describe(*budget, fluid_ ? "pore fluid" : "external force").c_str());
   }
   if (status == "completed") {
     std::printf("done: %llu steps of %llu particles in %.3f s wall (%.3g particle-steps/s); "

@@ -1,0 +1,89 @@
+#include "run/energy_budget.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace rockcut::coupler {
+
+namespace {
+
+double get(const std::vector<std::pair<std::string, double>>& scalars, const std::string& key,
+           bool& found) {
+  const auto it = std::find_if(scalars.begin(), scalars.end(),
+                               [&](const auto& s) { return s.first == key; });
+  if (it == scalars.end()) {
+    found = false;
+    return 0.0;
+  }
+  return it->second;
+}
+
+}  // namespace
+
+double EnergyBudget::initial_j() const {
+  const double held = kinetic_energy_j + strain_energy_j + damping_j + friction_j + broken_bond_j;
+  return held + imbalance_j - (boundary_work_j + external_work_j + gravity_work_j);
+}
+
+double EnergyBudget::input_j() const {
+  return std::max(initial_j(), 0.0) + std::max(boundary_work_j, 0.0) +
+         std::max(external_work_j, 0.0) + std::max(gravity_work_j, 0.0);
+}
+
+std::optional<EnergyBudget> energy_budget(
+    const std::vector<std::pair<std::string, double>>& scalars) {
+  bool found = true;
+  EnergyBudget b;
+  b.boundary_work_j = get(scalars, "boundary_work_j", found);
+  b.external_work_j = get(scalars, "external_work_j", found);
+  b.gravity_work_j = get(scalars, "gravity_work_j", found);
+  b.damping_j = get(scalars, "damping_j", found);
+  b.friction_j = get(scalars, "friction_j", found);
+  b.broken_bond_j = get(scalars, "broken_bond_j", found);
+  b.kinetic_energy_j = get(scalars, "kinetic_energy_j", found);
+  b.strain_energy_j = get(scalars, "strain_energy_j", found);
+  b.imbalance_j = get(scalars, "energy_imbalance_j", found);
+  if (!found) return std::nullopt;
+  return b;
+}
+
+std::string describe(const EnergyBudget& b, const std::string& external) {
+  const double in = b.input_j();
+  if (!(in > 0)) return "nothing came in";
+  std::string text;
+  const char* sep = "in: ";
+  char buf[96];
+  auto source = [&](const std::string& what, double j) {  // listed when it gave energy
+    if (!(j > 0)) return;
+    std::snprintf(buf, sizeof buf, "%s%s %.4g J/m", sep, what.c_str(), j);
+    text += buf;
+    sep = ", ";
+  };
+  source("initial", b.initial_j());
+  source("walls and tool", b.boundary_work_j);
+  source(external, b.external_work_j);
+  source("gravity", b.gravity_work_j);
+  sep = "; out: ";
+  auto sink = [&](const std::string& what, double j) {  // its share of what came in
+    std::snprintf(buf, sizeof buf, "%s%s %.1f %%", sep, what.c_str(), 100.0 * j / in);
+    text += buf;
+    sep = ", ";
+  };
+  sink("local damping", b.damping_j);
+  sink("friction", b.friction_j);
+  if (b.external_work_j < 0) sink(external, -b.external_work_j);
+  if (b.boundary_work_j < 0) sink("walls and tool", -b.boundary_work_j);
+  if (b.gravity_work_j < 0) sink("gravity", -b.gravity_work_j);
+  sink("broken bonds", b.broken_bond_j);
+  sink("kinetic + strain", b.kinetic_energy_j + b.strain_energy_j);
+  return text;
+}
+
+const std::vector<std::string>& energy_budget_keys() {
+  static const std::vector<std::string> keys = {
+      "boundary_work_j", "external_work_j", "gravity_work_j",   "damping_j",
+      "friction_j",      "broken_bond_j",   "kinetic_energy_j", "strain_energy_j"};
+  return keys;
+}
+
+}  // namespace rockcut::coupler

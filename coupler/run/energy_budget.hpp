@@ -1,0 +1,42 @@
+// Where the energy of a run went (DESIGN section 5): the DEM's ledger at the end of the run, as
+// shares of what came in. In a cut, local damping takes most of the tool's work, and that share
+// sets the size of the tool force (docs/accuracy.md, "Why the lag raises the force").
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rockcut::coupler {
+
+/// The DEM's ledger [J per m of thickness], the names of its step-report scalars.
+struct EnergyBudget {
+  double boundary_work_j = 0.0;  ///< work of the walls and the tool on the discs
+  double external_work_j = 0.0;  ///< work of the external (fluid) force
+  double gravity_work_j = 0.0;
+  double damping_j = 0.0;        ///< dissipated by local damping (eq. 10)
+  double friction_j = 0.0;       ///< dissipated by sliding contacts
+  double broken_bond_j = 0.0;    ///< strain energy released by broken bonds
+  double kinetic_energy_j = 0.0;
+  double strain_energy_j = 0.0;
+  double imbalance_j = 0.0;      ///< given - held (energy_imbalance_j)
+
+  /// The initial energy: given - work = held + imbalance - work.
+  double initial_j() const;
+  /// What came in: the initial energy and every work term that is positive.
+  double input_j() const;
+};
+
+/// The budget from a step report's scalars; none unless the DEM reported its ledger.
+std::optional<EnergyBudget> energy_budget(const std::vector<std::pair<std::string, double>>& scalars);
+
+/// One line: what came in, and each sink's share of it. A negative work term is a sink (the pore
+/// fluid takes energy in a cut); `external` names the external force ("pore fluid" in a coupled
+/// run).
+std::string describe(const EnergyBudget& budget, const std::string& external);
+
+/// The summary.json keys of the ledger, each the step-report scalar of the same name [J/m].
+const std::vector<std::string>& energy_budget_keys();
+
+}  // namespace rockcut::coupler

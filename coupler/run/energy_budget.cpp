@@ -1,6 +1,7 @@
 #include "run/energy_budget.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace rockcut::coupler {
@@ -22,7 +23,12 @@ double get(const std::vector<std::pair<std::string, double>>& scalars, const std
 
 double EnergyBudget::initial_j() const {
   const double held = kinetic_energy_j + strain_energy_j + damping_j + friction_j + broken_bond_j;
-  return held + imbalance_j - (boundary_work_j + external_work_j + gravity_work_j);
+  const double work = boundary_work_j + external_work_j + gravity_work_j;
+  const double e0 = held + imbalance_j - work;
+  // A specimen at rest and zero stress has E0 = 0, which this difference gives up to round-off.
+  const double scale =
+      std::abs(boundary_work_j) + std::abs(external_work_j) + std::abs(gravity_work_j);
+  return std::abs(e0) <= 1e-9 * scale ? 0.0 : e0;
 }
 
 double EnergyBudget::input_j() const {

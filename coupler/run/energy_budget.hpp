@@ -22,7 +22,7 @@ struct EnergyBudget {
   double strain_energy_j = 0.0;
   double imbalance_j = 0.0;      ///< given - held (energy_imbalance_j)
 
-  /// The initial energy: given - work = held + imbalance - work.
+  /// The initial energy: given - work = held + imbalance - work (0 within round-off of the work).
   double initial_j() const;
   /// What came in: the initial energy and every work term that is positive.
   double input_j() const;

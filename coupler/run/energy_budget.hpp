@@ -29,7 +29,8 @@ struct EnergyBudget {
 };
 
 /// The budget from a step report's scalars; none unless the DEM reported its ledger.
-std::optional<EnergyBudget> energy_budget(const std::vector<std::pair<std::string, double>>& scalars);
+std::optional<EnergyBudget> energy_budget(
+    const std::vector<std::pair<std::string, double>>& scalars);
 
 /// One line: what came in, and each sink's share of it. A negative work term is a sink (the pore
 /// fluid takes energy in a cut); `external` names the external force ("pore fluid" in a coupled

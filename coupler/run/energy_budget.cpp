@@ -21,6 +21,13 @@ double get(const std::vector<std::pair<std::string, double>>& scalars, const std
 
 }  // namespace
 
+std::vector<std::pair<const char*, double>> EnergyBudget::terms() const {
+  return {{"boundary_work_j", boundary_work_j}, {"external_work_j", external_work_j},
+          {"gravity_work_j", gravity_work_j},   {"damping_j", damping_j},
+          {"friction_j", friction_j},           {"broken_bond_j", broken_bond_j},
+          {"kinetic_energy_j", kinetic_energy_j}, {"strain_energy_j", strain_energy_j}};
+}
+
 double EnergyBudget::initial_j() const {
   const double held = kinetic_energy_j + strain_energy_j + damping_j + friction_j + broken_bond_j;
   const double work = boundary_work_j + external_work_j + gravity_work_j;
@@ -83,13 +90,6 @@ std::string describe(const EnergyBudget& b, const std::string& external) {
   sink("broken bonds", b.broken_bond_j);
   sink("kinetic + strain", b.kinetic_energy_j + b.strain_energy_j);
   return text;
-}
-
-const std::vector<std::string>& energy_budget_keys() {
-  static const std::vector<std::string> keys = {
-      "boundary_work_j", "external_work_j", "gravity_work_j",   "damping_j",
-      "friction_j",      "broken_bond_j",   "kinetic_energy_j", "strain_energy_j"};
-  return keys;
 }
 
 }  // namespace rockcut::coupler

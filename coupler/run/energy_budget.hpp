@@ -22,6 +22,9 @@ struct EnergyBudget {
   double strain_energy_j = 0.0;
   double imbalance_j = 0.0;      ///< given - held (energy_imbalance_j)
 
+  /// The terms as summary.json writes them: the step-report scalars' names [J/m], without the
+  /// imbalance (summary.json has its relative form).
+  std::vector<std::pair<const char*, double>> terms() const;
   /// The initial energy: given - work = held + imbalance - work (0 within round-off of the work).
   double initial_j() const;
   /// What came in: the initial energy and every work term that is positive.
@@ -36,8 +39,5 @@ std::optional<EnergyBudget> energy_budget(
 /// fluid takes energy in a cut); `external` names the external force ("pore fluid" in a coupled
 /// run).
 std::string describe(const EnergyBudget& budget, const std::string& external);
-
-/// The summary.json keys of the ledger, each the step-report scalar of the same name [J/m].
-const std::vector<std::string>& energy_budget_keys();
 
 }  // namespace rockcut::coupler

@@ -428,11 +428,7 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
   if (imbalance != scalars_.end()) summary_.set("energy_imbalance_rel", imbalance->second);
   const std::optional<EnergyBudget> budget = energy_budget(scalars_);
   if (budget) {
-    for (const std::string& key : energy_budget_keys()) {
-      const auto it = std::find_if(scalars_.begin(), scalars_.end(),
-                                   [&](const auto& s) { return s.first == key; });
-      summary_.set(key, it->second);
-    }
+    for (const auto& [key, value] : budget->terms()) summary_.set(key, value);
   }
   if (fluid_) summary_.set("fluid_busy_s", fluid_busy_s_ - fluid_busy0_s_);
   try {

@@ -63,8 +63,8 @@ void DemService::init(const wire::Init& init, wire::Message& reply) {
     l->set_detail(setup_.critical.detail);
   }
   if (!setup_.specimen_report.empty()) r->add_notes(setup_.specimen_report);
-  const std::string advice =
-      thread_advice(setup_.system->particles().size(), static_cast<int>(init.scene().dem().threads()));
+  const std::string advice = thread_advice(setup_.system->particles().size(),
+                                           static_cast<int>(init.scene().dem().threads()));
   if (!advice.empty()) r->add_notes(advice);
 }
 

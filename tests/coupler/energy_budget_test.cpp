@@ -28,6 +28,13 @@ TEST(EnergyBudget, ACutsToolWorkSplitsIntoItsSinksAndTheFluidIsOneOfThem) {
   EXPECT_EQ(rounded->initial_j(), 0.0);
   EXPECT_EQ(describe(*rounded, "pore fluid").rfind("in: walls and tool 100 J/m;", 0), 0u);
   EXPECT_DOUBLE_EQ(b->input_j(), 100.0);
+  // summary.json's terms: the ledger's own names and values, the imbalance left out.
+  const auto terms = b->terms();
+  ASSERT_EQ(terms.size(), 8u);
+  EXPECT_STREQ(terms[3].first, "damping_j");
+  EXPECT_EQ(terms[3].second, 70.0);
+  EXPECT_STREQ(terms[1].first, "external_work_j");
+  EXPECT_EQ(terms[1].second, -10.0);
   EXPECT_EQ(describe(*b, "pore fluid"),
             "in: walls and tool 100 J/m; out: local damping 70.0 %, friction 15.0 %, pore fluid "
             "10.0 %, broken bonds 3.0 %, kinetic + strain 2.0 %");

@@ -199,12 +199,7 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
                              ThreadSums& sums) {
   double* f = particles_.force.data();
   double* q = particles_.torque.data();
-  double* fe = particles_.external_force.data();
-  // With a held stiffness the external force follows each disc's own displacement since the hold.
-  const double* ks = external_stiffness_.empty() ? nullptr : external_stiffness_.data();
-  const double* held = external_held_.data();
-  const double* x_ref = external_reference_position_.data();
-  const double* x = particles_.position.data();
+  const double* fe = particles_.external_force.data();
   double* v = particles_.velocity.data();
   double* w = particles_.angular_velocity.data();
   const double* inv_m = particles_.inv_mass.data();
@@ -217,11 +212,6 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
   const bool body = has_body_forces_;
   double damping = 0.0, work = 0.0, gravity = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
-    if (ks) {  // F^{n+1} = F_held + K (x^{n+1} - x_ref), before both its uses below
-      const double dx = x[2 * i] - x_ref[2 * i], dy = x[2 * i + 1] - x_ref[2 * i + 1];
-      fe[2 * i] = held[2 * i] + ks[3 * i] * dx + ks[3 * i + 1] * dy;
-      fe[2 * i + 1] = held[2 * i + 1] + ks[3 * i + 1] * dx + ks[3 * i + 2] * dy;
-    }
     double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
     const double vx = v[2 * i], vy = v[2 * i + 1];
     if (body) {
@@ -473,22 +463,9 @@ void DemSystem::hold_external_force(std::span<const double> external) {
                                 " values for " + std::to_string(particles_.size()) + " particles");
   }
   std::copy(external.begin(), external.end(), particles_.external_force.begin());
-  if (!external_stiffness_.empty()) {
-    external_held_.assign(external.begin(), external.end());
-    external_reference_position_ = particles_.position;
-  }
   if (!has_body_forces_) {
     has_body_forces_ = std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
   }
-}
-
-void DemSystem::set_external_stiffness(std::span<const double> stiffness) {
-  if (stiffness.size() != 3 * particles_.size()) {
-    throw std::invalid_argument("external force stiffness has " + std::to_string(stiffness.size()) +
-                                " values for " + std::to_string(particles_.size()) +
-                                " particles (3 each: xx, xy, yy)");
-  }
-  external_stiffness_.assign(stiffness.begin(), stiffness.end());
 }
 
 void DemSystem::set_external_force(std::span<const double> external) {

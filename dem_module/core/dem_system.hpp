@@ -70,11 +70,6 @@ class DemSystem {
   /// Second half: total force = internal + `external` (eq. 7), v^{n+1} = v^{n+1/2} + a dt/2 (eq. 8).
   /// `external` (2 per particle, [N/m]) is held for later steps until replaced.
   void finish_step(double dt, std::span<const double> external);
-  /// The held external force's derivative with respect to each particle's own position
-  /// [N/m per m], 3 per particle (xx, xy, yy), until replaced: from now on the external force on
-  /// particle i is F_i + K_i (x_i - x_i at the last finish_step or set_external_force), with F_i
-  /// the force held there (coupling.fluid_force "stiffness").
-  void set_external_stiffness(std::span<const double> stiffness);
   /// Replaces the held external force and re-evaluates a^n without moving (used at t = 0).
   void set_external_force(std::span<const double> external);
   /// Holds the y velocity of `particles` at velocity_y_m_s from now on (dry scenes: an external y
@@ -147,8 +142,6 @@ class DemSystem {
   std::vector<std::uint32_t> freed_pairs_;
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
   std::vector<ClampedGroup> clamped_;
-  // set_external_stiffness(): K_i, and the force and positions of the last hold [N/m, m].
-  std::vector<double> external_stiffness_, external_held_, external_reference_position_;
   std::vector<ThreadSums> sums_;  ///< one per thread, for the pass in progress
   double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;

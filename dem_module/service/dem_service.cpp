@@ -140,9 +140,6 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
 void DemService::hold_forces(const wire::Message& request) {
   DemSystem& s = system();
   const auto force = request.array(wire::field::kForce, 2);
-  if (request.has_array(wire::field::kForceStiffness)) {  // sent only when it changed
-    s.set_external_stiffness(request.array(wire::field::kForceStiffness, 3));
-  }
   if (s.in_split_step()) {
     s.finish_step(split_dt_s_, force);
   } else {

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 #include <span>
 #include <string>
 #include <utility>
@@ -66,13 +65,6 @@ class FluidModel {
   virtual bool probe(std::span<const double> /*position*/, const ProbeBox& /*box*/,
                      double& /*mean_pa*/, std::size_t& /*count*/) const {
     return false;
-  }
-  /// The force's derivative with respect to each particle's own position, dF_i/dx_i
-  /// [N/m per m], 3 per particle (xx, xy, yy), for coupling.fluid_force "stiffness"; empty when
-  /// the model has none. `version` changes whenever the values do.
-  virtual std::span<const double> force_stiffness(std::uint64_t& version) const {
-    version = 0;
-    return {};
   }
   /// Named scalars of the last step for the time series (FluidResult.scalars; the coupler
   /// prefixes them with "fluid_"). Once per step, never per particle.

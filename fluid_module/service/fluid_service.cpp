@@ -94,12 +94,6 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
   wire::FluidResult* result = reply.envelope.mutable_fluid_result();
   guard_not_finite(s.time_s(), k.position, *result);
   reply.add_array(wire::field::kForce, force_, 2);
-  std::uint64_t version = 0;
-  const std::span<const double> stiffness = m.force_stiffness(version);
-  if (!stiffness.empty() && version != stiffness_version_sent_) {
-    reply.add_array(wire::field::kForceStiffness, stiffness, 3);  // only when it changed
-    stiffness_version_sent_ = version;
-  }
   if (!s.report()) return;  // nothing records this exchange
   m.scalars(scalars_);
   for (const auto& [name, value] : scalars_) (*result->mutable_scalars())[name] = value;

@@ -33,7 +33,6 @@ class FluidService final : public wire::ModuleHandler {
   std::vector<std::string> needs_;
   std::size_t particle_count_ = 0;
   std::vector<double> force_;
-  std::uint64_t stiffness_version_sent_ = 0;  // FluidModel::force_stiffness's last version sent
   std::vector<double> output_;
   std::vector<std::pair<std::string, double>> scalars_;
 };

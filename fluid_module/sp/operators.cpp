@@ -154,42 +154,6 @@ void adjoint_pressure_force(const Geometry& geo, std::span<const double> area,
   }
 }
 
-void self_stiffness(const Geometry& geo, std::span<const double> a, double scale,
-                    std::span<double> stiffness) {
-  const int n = static_cast<int>(geo.particles());
-  const int* begin = geo.row_begin.data();
-  const int* end = geo.row_end.data();
-  const int* nb = geo.neighbours.data();
-  const double* v = geo.volume.data();
-  const double* inv = geo.l_inverse.data();
-  const double* x = geo.position.data();
-  const double* f = geo.f.data();
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const double xi = x[2 * i], yi = x[2 * i + 1];
-    double s1x = 0.0, s1y = 0.0;     // S1_i = sum_j F_ij V_j (x_j - x_i)
-    double kxx = 0.0, kxy = 0.0, kyy = 0.0;  // sum_k a_k c_ki c_ki^T
-    for (int kk = begin[i]; kk < end[i]; ++kk) {
-      const int k = nb[kk];
-      const double dx = x[2 * k] - xi, dy = x[2 * k + 1] - yi;
-      s1x += f[kk] * v[k] * dx;
-      s1y += f[kk] * v[k] * dy;
-      // c_ki = B_ki = -V_i F_ki L_k^{-1} (x_i - x_k) = V_i F_ik L_k^{-1} (dx, dy) (F symmetric).
-      const double* m = inv + 3 * k;
-      const double s = v[i] * f[kk];
-      const double cx = s * (m[0] * dx + m[1] * dy), cy = s * (m[1] * dx + m[2] * dy);
-      kxx += a[k] * cx * cx;
-      kxy += a[k] * cx * cy;
-      kyy += a[k] * cy * cy;
-    }
-    const double* m = inv + 3 * i;
-    const double dx = m[0] * s1x + m[1] * s1y, dy = m[1] * s1x + m[2] * s1y;  // d_i
-    stiffness[3 * i] = scale * (kxx + a[i] * dx * dx);
-    stiffness[3 * i + 1] = scale * (kxy + a[i] * dx * dy);
-    stiffness[3 * i + 2] = scale * (kyy + a[i] * dy * dy);
-  }
-}
-
 void interpolate(const Geometry& geo, double w0, std::span<const double> a,
                  std::span<const double> grad, std::span<double> out) {
   const int n = static_cast<int>(geo.particles());

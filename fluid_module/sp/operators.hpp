@@ -32,18 +32,6 @@ void adjoint_pressure_force(const Geometry& geo, std::span<const double> area,
                             std::span<const double> q, std::span<double> force,
                             std::span<double> work);
 
-/// The diagonal blocks of the undrained stiffness of adjoint_pressure_force: with the pressure's
-/// response q = -alpha M div(u) to a displacement u (eq. 14 without diffusion), the force is
-/// F = -alpha M D^T A D u with D the divergence's matrix (dF/du symmetric, negative
-/// semi-definite). Block i, the force on i per unit displacement of i alone, is
-///   K_i = -alpha M [a_i d_i d_i^T + sum_k a_k c_ki c_ki^T],
-///   d_i = -sum_j B_ij = L_i^{-1} sum_j F_ij V_j (x_j - x_i),   c_ki = B_ki,
-/// where a_k is the area of particle k's pressure (0 where the pressure is held, at drained
-/// particles). `scale` is -alpha M; `stiffness` gets 3 values per particle (xx, xy, yy) [N/m per
-/// m]. Geometry only: it changes when the geometry does.
-void self_stiffness(const Geometry& geo, std::span<const double> a, double scale,
-                    std::span<double> stiffness);
-
 /// The Cleary & Monaghan (Brookshaw) Laplacian of eq. 20 for a uniform coefficient, with the SP
 /// volume V_j in place of m_j / rho_i:
 ///   lap a_i = sum_j 2 V_j (a_i - a_j) F_ij,   F_ij = (n_ij . grad_i W_ij) / r_ij.

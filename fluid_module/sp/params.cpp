@@ -33,12 +33,6 @@ SpParams sp_params_from_scene(const rockcut::Scene& scene) {
   p.strain_from = f.strain_from() == "velocity_half" ? StrainFrom::velocity_half
                                                      : StrainFrom::displacement;
   p.force_form = f.force_form() == "gradient" ? ForceForm::gradient : ForceForm::adjoint;
-  p.force_stiffness = scene.coupling().fluid_force() == "stiffness";
-  if (p.force_stiffness && p.force_form != ForceForm::adjoint) {
-    throw std::invalid_argument(
-        "coupling.fluid_force: \"stiffness\" needs fluid.force_form: \"adjoint\" (the "
-        "derivative dF_i/dx_i is that of the adjoint force); found \"" + f.force_form() + "\"");
-  }
   p.volume_iterations = f.volume_iterations();
   p.skin = f.neighbour_skin();
   p.geometry_refresh = f.geometry_refresh_distance();

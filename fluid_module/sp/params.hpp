@@ -34,8 +34,6 @@ struct SpParams {
   double p_min_pa = 2340.0;            ///< eq. 22
   StrainFrom strain_from = StrainFrom::displacement;
   ForceForm force_form = ForceForm::adjoint;
-  /// coupling.fluid_force "stiffness": compute dF_i/dx_i for the DEM (self_stiffness()).
-  bool force_stiffness = false;
   unsigned volume_iterations = 3;
   double skin = 0.1;                   ///< neighbour skin, fraction of h
   /// Recompute the SP geometry only after a particle or wall has moved this far, fraction of h

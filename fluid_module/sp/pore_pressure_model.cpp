@@ -140,9 +140,7 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
     update_share();
     ++geometry_updates_;
-    if (params_.force_stiffness) update_stiffness();
   }
-  if (params_.force_stiffness && stiffness_.empty()) update_stiffness();
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.
@@ -192,18 +190,6 @@ void PorePressureModel::update_share() {
   // Summed over the grains it is sum pi r^2, as in eq. 21. It changes only with the geometry.
   share_.resize(geo_.volume.size());
   for (std::size_t i = 0; i < share_.size(); ++i) share_[i] = packing_fraction_ * geo_.volume[i];
-}
-
-void PorePressureModel::update_stiffness() {
-  // The pressure of a drained particle is held at p_hydro: it does not respond (a_k = 0).
-  const std::size_t n = share_.size();
-  stiffness_area_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    stiffness_area_[i] = boundary_[i] == Boundary::drained ? 0.0 : share_[i];
-  }
-  stiffness_.resize(3 * n);
-  self_stiffness(geo_, stiffness_area_, -params_.alpha * params_.bulk_modulus_pa, stiffness_);
-  ++stiffness_version_;
 }
 
 bool PorePressureModel::geometry_stale(std::span<const double> position,

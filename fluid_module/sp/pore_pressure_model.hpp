@@ -72,12 +72,6 @@ class PorePressureModel : public FluidModel {
   std::size_t cavitated() const { return cavitated_; }
   /// How many times step() recomputed the SP geometry (see SpParams::geometry_refresh).
   std::uint64_t geometry_updates() const { return geometry_updates_; }
-  /// dF_i/dx_i for coupling.fluid_force "stiffness" (self_stiffness(); empty otherwise),
-  /// recomputed with the geometry; `version` counts the recomputations.
-  std::span<const double> force_stiffness(std::uint64_t& version) const override {
-    version = stiffness_version_;
-    return stiffness_;
-  }
 
  protected:
   /// The step limit of the model's own time integration of eq. 14 (stability or accuracy).
@@ -114,15 +108,10 @@ class PorePressureModel : public FluidModel {
   bool geometry_stale(std::span<const double> position, std::span<const double> walls) const;
   /// share_ = phi V_i for the current geometry: the area the excess pressure acts on.
   void update_share();
-  /// stiffness_ for the current geometry and boundary (params_.force_stiffness).
-  void update_stiffness();
 
   double packing_fraction_ = 1.0;
   std::vector<double> walls_at_geometry_;  // wall segments of the current geometry [m]
   std::uint64_t geometry_updates_ = 0;
-  std::vector<double> stiffness_;  // dF_i/dx_i [N/m per m], 3 per particle (xx, xy, yy)
-  std::vector<double> stiffness_area_;  // a_k of self_stiffness(): share_, 0 where drained [m^2]
-  std::uint64_t stiffness_version_ = 0;
 };
 
 }  // namespace rockcut::fluid::sp

@@ -18,8 +18,6 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "T_n: a bond breaks when its tensile force exceeds this."},
     {"rockcut.ContactParameters.friction",
      "mu_grain of Table 1."},
-    {"rockcut.Coupling.fluid_force",
-     "How the DEM applies the fluid force between two exchanges (N > 1). `hold`: the force of the last exchange, constant for the N steps (DESIGN section 3). `stiffness`: that force plus K_i (x_i - x_i at the exchange), with K_i = dF_i/dx_i the force's undrained response to the particle's own displacement, which the fluid sends when its geometry changes (docs/accuracy.md, \"Self-stiffness between exchanges\")."},
     {"rockcut.Coupling.interval",
      "DEM steps per fluid step (N). Leave it out to let the coupler choose it from the stability limits; a value above a limit is refused."},
     {"rockcut.Coupling.interval_fraction",

@@ -20,9 +20,6 @@ inline constexpr std::string_view kRadius = "radius";                // [m], 1
 inline constexpr std::string_view kForce = "force";                  // [N per m thickness], 2, total
 inline constexpr std::string_view kExternalForce = "external_force"; // [N/m], 2, from the fluid
 inline constexpr std::string_view kPressure = "pressure";            // [Pa], 1
-/// dF_i/dx_i of the fluid force [N/m per m], 3 (xx, xy, yy): with coupling.fluid_force
-/// "stiffness", sent with the force whenever it changed since the last one sent.
-inline constexpr std::string_view kForceStiffness = "force_stiffness";
 /// Not per particle: one row per straight segment of the walls and the tool at the current time,
 /// (ax, ay, bx, by) [m]. The fluid keeps the no-flux condition on surface particles facing them.
 inline constexpr std::string_view kWallSegments = "wall_segments";   // [m], 4 per segment

@@ -43,44 +43,6 @@ TEST(AdjointForce, IsTheNegativeTransposeOfTheDivergence) {
   EXPECT_NEAR(fluid_work, energy, 1e-12 * scale);
 }
 
-TEST(SelfStiffness, IsTheDiagonalBlockOfTheUndrainedResponse) {
-  // K_i = dF_i/dx_i of sp/operators.hpp: moving particle i alone by u changes the pressures by
-  // q = -alpha M div(u) and the force on i by adjoint(q); its first column is K_i (u_x, 0) / u_x,
-  // its second K_i (0, u_y) / u_y. The same sums in another order: tolerance 1e-12 relative to
-  // the largest term (round-off ~1e-16 times a few dozen terms).
-  const Initialised s(random_packing(), 0.0015);
-  const std::size_t n = s.particles.size();
-  std::vector<double> area(n), div(n), q(n), force(2 * n), work(3 * n), stiffness(3 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    // Any areas: a zero one (a drained particle) among them.
-    area[i] = i % 7 == 3 ? 0.0 : std::numbers::pi * s.particles.radius[i] * s.particles.radius[i];
-  }
-  const double scale = -0.5 * 2e9;  // -alpha M
-  sp::self_stiffness(s.geo(), area, scale, stiffness);
-  const double u = 1e-7;
-  double largest = 0.0;
-  for (double k : stiffness) largest = std::max(largest, std::abs(k));
-  ASSERT_GT(largest, 0.0);
-  for (std::size_t i : {std::size_t{0}, n / 3, n / 2, n - 1}) {
-    for (int axis = 0; axis < 2; ++axis) {
-      std::vector<double> disp(2 * n, 0.0);
-      disp[2 * i + axis] = u;
-      sp::divergence(s.geo(), disp, div);
-      for (std::size_t k = 0; k < n; ++k) q[k] = scale * div[k];
-      sp::adjoint_pressure_force(s.geo(), area, q, force, work);
-      const double kx = axis == 0 ? stiffness[3 * i] : stiffness[3 * i + 1];
-      const double ky = axis == 0 ? stiffness[3 * i + 1] : stiffness[3 * i + 2];
-      EXPECT_NEAR(force[2 * i] / u, kx, 1e-12 * largest) << "particle " << i << " axis " << axis;
-      EXPECT_NEAR(force[2 * i + 1] / u, ky, 1e-12 * largest) << "particle " << i << " axis " << axis;
-    }
-    // Restoring: K_i is negative semi-definite.
-    EXPECT_LE(stiffness[3 * i], 0.0);
-    EXPECT_LE(stiffness[3 * i + 2], 0.0);
-    EXPECT_GE(stiffness[3 * i] * stiffness[3 * i + 2] - stiffness[3 * i + 1] * stiffness[3 * i + 1],
-              -1e-12 * largest * largest);
-  }
-}
-
 TEST(SpOperators, GiveTheSameBitsWithOneAndTwoThreads) {
   // fluid.threads: every operator is a per-particle gather over the symmetric neighbour rows, so
   // splitting the particles between threads changes no sum's order.

@@ -1,7 +1,7 @@
 // The Wendland C2 kernel in 2D (paper eq. 18; Wendland 1995) with support radius h:
 //   W(R) = 7 / (pi h^2) (1 - R)^4 (1 + 4 R)  for R = r / h <= 1, else 0.
 // The paper prints 7 / pi^2: a typo. 7 / (pi h^2) makes the integral of W over the plane 1
-// (DESIGN section 4; tests/fluid/kernel_test.cpp checks it).
+// (DESIGN section 4; tests/fluid/kernel_neighbours_test.cpp checks it).
 //
 // Every SP operator here needs the kernel gradient only through
 //   grad_i W_ij = F(r_ij) (x_i - x_j),   F(r) = (1/r) dW/dr = -140 / (pi h^4) (1 - R)^3,

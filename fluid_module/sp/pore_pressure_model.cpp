@@ -116,7 +116,6 @@ void PorePressureModel::initialise(const StaticData& data) {
   update_share();
   area_.resize(n);
   for (std::size_t i = 0; i < n; ++i) area_[i] = std::numbers::pi * radius_[i] * radius_[i];
-  work_.assign(3 * n, 0.0);
   laplacian_.assign(n, 0.0);
   grad_.assign(2 * n, 0.0);
   boundary_.assign(n, Boundary::interior);
@@ -147,10 +146,11 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     const bool from_displacement = params_.strain_from == StrainFrom::displacement;
     const std::span<const double> field = from_displacement ? k.displacement : k.velocity_half;
     check_size(field, 2 * n, from_displacement ? "displacement" : "velocity_half");
+    if (step_op_.version() != geo_.version) step_op_.build(geo_, share_);
     if (laplacian_in_step_) {
-      divergence_laplacian(geo_, field, pressure_, strain_rate_, laplacian_);
+      step_op_.divergence_laplacian(geo_, field, pressure_, strain_rate_, laplacian_);
     } else {
-      divergence(geo_, field, strain_rate_);
+      step_op_.divergence(geo_, field, strain_rate_);
     }
     if (from_displacement) {
       for (double& e : strain_rate_) e /= dt_s;
@@ -173,7 +173,8 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   if (params_.force_form == ForceForm::adjoint) {
     // The excess pressure acts on share_ (update_share).
     for (std::size_t i = 0; i < n; ++i) excess_[i] = pressure_[i] - params_.p_hydro_pa;
-    adjoint_pressure_force(geo_, share_, excess_, force, work_);
+    if (step_op_.version() != geo_.version) step_op_.build(geo_, share_);
+    step_op_.adjoint_force(geo_, excess_, force);
     return;
   }
   // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].

@@ -19,6 +19,7 @@
 #include "sp/kernel.hpp"
 #include "sp/neighbours.hpp"
 #include "sp/params.hpp"
+#include "sp/step_operator.hpp"
 
 namespace rockcut::fluid::sp {
 
@@ -90,13 +91,15 @@ class PorePressureModel : public FluidModel {
   Geometry geo_;
   std::vector<double> radius_, lucy_volume_;
   std::vector<double> pressure_, strain_rate_, source_, grad_;
-  std::vector<double> work_;  // scratch, 3 per particle (adjoint_pressure_force)
   /// Set by a model whose advance() needs lap p^n (the explicit one): step() then computes it in
   /// the divergence's pass over the pairs (divergence_laplacian), into laplacian_ [Pa/m^2].
   bool laplacian_in_step_ = false;
   std::vector<double> laplacian_;
   std::vector<double> excess_, area_;  // p - p_hydro [Pa]; pi r^2 [m^2]
   std::vector<double> share_;          // phi V_i [m^2], set with the geometry (update_share)
+  /// The step's divergence, Laplacian and adjoint force as per-pair coefficients of the current
+  /// geometry (and share_), rebuilt when the geometry changes.
+  StepOperator step_op_;
   std::vector<Boundary> boundary_;
   Sides sides_;
   BoundaryCounts counts_;

@@ -1,0 +1,128 @@
+#include "sp/step_operator.hpp"
+
+#include <cstring>
+
+// Every loop is a per-particle gather over the symmetric rows, as in sp/operators.cpp: OpenMP
+// threads split the particles and give the same bits for any thread count.
+
+namespace rockcut::fluid::sp {
+
+namespace {
+
+// (x, y) in one SSE2 register, as in sp/operators.cpp.
+typedef double Vec2 __attribute__((vector_size(16)));
+
+inline Vec2 load2(const double* p) {
+  Vec2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+}  // namespace
+
+void StepOperator::build(const Geometry& geo, std::span<const double> area) {
+  const int n = static_cast<int>(geo.particles());
+  c_lam_.resize(3 * geo.neighbours.size());
+  b_.resize(2 * geo.neighbours.size());
+  c_sum_.resize(2 * static_cast<std::size_t>(n));
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
+  const double* v = geo.volume.data();
+  const double* f = geo.f.data();
+  const double* inv = geo.l_inverse.data();
+  const double* x = geo.position.data();
+  const double* a = area.data();
+  double* cl = c_lam_.data();
+  double* b = b_.data();
+  double* cs = c_sum_.data();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const double* mi = inv + 3 * i;
+    const double xi = x[2 * i], yi = x[2 * i + 1];
+    double sx = 0.0, sy = 0.0;
+    for (int k = begin[i]; k < end[i]; ++k) {
+      const int j = nb[k];
+      const double dx = x[2 * j] - xi, dy = x[2 * j + 1] - yi;
+      const double* mj = inv + 3 * j;
+      // c = B_ij = -V_j F_ij L_i^{-1} d  (L^{-1} symmetric: xx, xy, yy)
+      const double s = -v[j] * f[k];
+      const double cx = s * (mi[0] * dx + mi[1] * dy), cy = s * (mi[1] * dx + mi[2] * dy);
+      cl[3 * k] = cx;
+      cl[3 * k + 1] = cy;
+      cl[3 * k + 2] = 2.0 * v[j] * f[k];
+      sx += cx;
+      sy += cy;
+      // b = A_j B_ji = A_j (-V_i F_ij L_j^{-1} (x_i - x_j)) = A_j V_i F_ij L_j^{-1} d
+      const double t = a[j] * v[i] * f[k];
+      b[2 * k] = t * (mj[0] * dx + mj[1] * dy);
+      b[2 * k + 1] = t * (mj[1] * dx + mj[2] * dy);
+    }
+    cs[2 * i] = a[i] * sx;
+    cs[2 * i + 1] = a[i] * sy;
+  }
+  version_ = geo.version;
+}
+
+void StepOperator::divergence(const Geometry& geo, std::span<const double> vel,
+                              std::span<double> div) const {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
+  const double* cl = c_lam_.data();
+  const double* u = vel.data();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const Vec2 ui = load2(u + 2 * i);
+    Vec2 s = {0.0, 0.0};
+    for (int k = begin[i]; k < end[i]; ++k) s += load2(cl + 3 * k) * (load2(u + 2 * nb[k]) - ui);
+    div[i] = s[0] + s[1];
+  }
+}
+
+void StepOperator::divergence_laplacian(const Geometry& geo, std::span<const double> vel,
+                                        std::span<const double> a, std::span<double> div,
+                                        std::span<double> lap) const {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
+  const double* cl = c_lam_.data();
+  const double* u = vel.data();
+  const double* p = a.data();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const Vec2 ui = load2(u + 2 * i);
+    const double ai = p[i];
+    Vec2 s = {0.0, 0.0};
+    double l = 0.0;
+    for (int k = begin[i]; k < end[i]; ++k) {
+      const int j = nb[k];
+      s += load2(cl + 3 * k) * (load2(u + 2 * j) - ui);
+      l += cl[3 * k + 2] * (ai - p[j]);
+    }
+    div[i] = s[0] + s[1];
+    lap[i] = l;
+  }
+}
+
+void StepOperator::adjoint_force(const Geometry& geo, std::span<const double> q,
+                                 std::span<double> force) const {
+  const int n = static_cast<int>(geo.particles());
+  const int* begin = geo.row_begin.data();
+  const int* end = geo.row_end.data();
+  const int* nb = geo.neighbours.data();
+  const double* b = b_.data();
+  const double* cs = c_sum_.data();
+  const double* qs = q.data();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    Vec2 s = {0.0, 0.0};
+    for (int k = begin[i]; k < end[i]; ++k) s += load2(b + 2 * k) * qs[nb[k]];
+    const Vec2 fi = s - qs[i] * load2(cs + 2 * i);  // sum_j A_j q_j B_ji - A_i q_i sum_j B_ij
+    std::memcpy(force.data() + 2 * i, &fi, sizeof fi);
+  }
+}
+
+}  // namespace rockcut::fluid::sp

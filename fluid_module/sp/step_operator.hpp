@@ -1,0 +1,55 @@
+// The operators of a fluid step as precomputed per-pair coefficients (paper eqs. 17, 20 and the
+// adjoint pressure force of sp/operators.hpp).
+//
+// Between two geometry updates (SpParams::geometry_refresh) the SP geometry is fixed, and so the
+// step is a fixed sparse linear map: the corrected divergence, the Laplacian and the adjoint force
+// are sums over the pairs whose coefficients depend on the geometry alone. In a cut the geometry
+// is recomputed about once per 10 exchanges (session 13's paper-scale run: 36,710 updates in
+// 378,670 exchanges), so computing the coefficients once per geometry and streaming them in the
+// step takes the kernel arithmetic (the L_i^{-1} products, F_ij (x_j - x_i)) and the gathers of
+// x_j, V_j and L_j^{-1} out of the step's two passes over the pairs.
+//
+// Per pair (i, j) of row i, at the same index k as Geometry::neighbours:
+//   c_k   = B_ij = -V_j F_ij L_i^{-1} (x_j - x_i)          (eq. 17: div_i = sum_k c_k . (v_j - v_i))
+//   lam_k = 2 V_j F_ij                                     (eq. 20: lap_i = sum_k lam_k (a_i - a_j))
+//   b_k   = A_j B_ji = A_j V_i F_ij L_j^{-1} (x_j - x_i)  (adjoint: F_i = sum_k b_k q_j - q_i C_i)
+// and per particle C_i = A_i sum_k B_ij. A_j is the area the excess pressure acts on.
+//
+// The results equal the operators' up to the order of the floating-point operations (a few ulps
+// of the largest term; tests/fluid/step_operator_test.cpp).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sp/geometry.hpp"
+
+namespace rockcut::fluid::sp {
+
+class StepOperator {
+ public:
+  /// Computes the coefficients for `geo` with the pressure areas `area` [m^2] (1 per particle).
+  void build(const Geometry& geo, std::span<const double> area);
+
+  /// The geometry version the coefficients belong to (Geometry::version).
+  std::uint64_t version() const { return version_; }
+
+  /// divergence(geo, vel, div) of sp/operators.hpp.
+  void divergence(const Geometry& geo, std::span<const double> vel, std::span<double> div) const;
+  /// divergence_laplacian(geo, vel, a, div, lap) of sp/operators.hpp, in one pass.
+  void divergence_laplacian(const Geometry& geo, std::span<const double> vel,
+                            std::span<const double> a, std::span<double> div,
+                            std::span<double> lap) const;
+  /// adjoint_pressure_force(geo, area, q, force, work) of sp/operators.hpp, with the areas given
+  /// to build(). `force` gets 2 values per particle (overwritten).
+  void adjoint_force(const Geometry& geo, std::span<const double> q, std::span<double> force) const;
+
+ private:
+  std::vector<double> c_lam_;  ///< per pair: c_x, c_y, lam
+  std::vector<double> b_;      ///< per pair: b_x, b_y
+  std::vector<double> c_sum_;  ///< per particle: C_i = A_i sum_k c_k (x, y)
+  std::uint64_t version_ = ~std::uint64_t{0};
+};
+
+}  // namespace rockcut::fluid::sp

@@ -131,7 +131,8 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   if (!(dt_s >= 0.0) || !std::isfinite(dt_s)) {
     throw std::invalid_argument("fluid: step with dt_s = " + std::to_string(dt_s));
   }
-  if (geometry_stale(k.position, k.wall_segments)) {
+  const Staleness stale = staleness(k.position, k.wall_segments);
+  if (stale == Staleness::particles) {
     list_.update(k.position);
     update_geometry(list_, kernel_, k.position, lucy_volume_, params_.volume_iterations, geo_);
     counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
@@ -139,6 +140,13 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
     update_share();
     ++geometry_updates_;
+  } else if (stale == Staleness::walls) {
+    // Only a wall (the tool) has moved: the kernel sums do not see walls, so only the boundary
+    // (which particles the walls seal) is recomputed, on the geometry's own positions.
+    counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
+                                geo_.position, radius_, sides_, boundary_, k.wall_segments);
+    walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
+    ++boundary_updates_;
   }
 
   if (dt_s > 0.0) {
@@ -193,11 +201,11 @@ void PorePressureModel::update_share() {
   for (std::size_t i = 0; i < share_.size(); ++i) share_[i] = packing_fraction_ * geo_.volume[i];
 }
 
-bool PorePressureModel::geometry_stale(std::span<const double> position,
-                                      std::span<const double> walls) const {
+PorePressureModel::Staleness PorePressureModel::staleness(std::span<const double> position,
+                                                          std::span<const double> walls) const {
   if (!(params_.geometry_refresh > 0.0) || position.size() != geo_.position.size() ||
       walls.size() != walls_at_geometry_.size()) {
-    return true;
+    return Staleness::particles;
   }
   // Squared distances against (refresh h)^2: one pass, no square roots.
   const double limit = params_.geometry_refresh * params_.h_m;
@@ -211,12 +219,13 @@ bool PorePressureModel::geometry_stale(std::span<const double> position,
     const double dx = x[2 * i] - x0[2 * i], dy = x[2 * i + 1] - x0[2 * i + 1];
     moved2 = std::max(moved2, dx * dx + dy * dy);
   }
+  if (moved2 > limit2) return Staleness::particles;
   for (std::size_t k = 0; k + 1 < walls.size(); k += 2) {  // both ends of every segment
     const double dx = walls[k] - walls_at_geometry_[k];
     const double dy = walls[k + 1] - walls_at_geometry_[k + 1];
-    moved2 = std::max(moved2, dx * dx + dy * dy);
+    if (dx * dx + dy * dy > limit2) return Staleness::walls;
   }
-  return moved2 > limit2;
+  return Staleness::fresh;
 }
 
 void PorePressureModel::output(const std::string& field, std::vector<double>& values) const {
@@ -246,6 +255,7 @@ void PorePressureModel::scalars(std::vector<std::pair<std::string, double>>& out
   out.emplace_back("cavitated_particles", static_cast<double>(cavitated_));
   out.emplace_back("neighbour_builds", static_cast<double>(list_.builds()));
   out.emplace_back("geometry_updates", static_cast<double>(geometry_updates_));
+  out.emplace_back("boundary_updates", static_cast<double>(boundary_updates_));
   add_scalars(out);
 }
 

@@ -73,6 +73,8 @@ class PorePressureModel : public FluidModel {
   std::size_t cavitated() const { return cavitated_; }
   /// How many times step() recomputed the SP geometry (see SpParams::geometry_refresh).
   std::uint64_t geometry_updates() const { return geometry_updates_; }
+  /// How many times step() recomputed only the boundary, because only a wall had moved.
+  std::uint64_t boundary_updates() const { return boundary_updates_; }
 
  protected:
   /// The step limit of the model's own time integration of eq. 14 (stability or accuracy).
@@ -106,15 +108,17 @@ class PorePressureModel : public FluidModel {
   std::size_t cavitated_ = 0;
 
  private:
-  /// Whether a particle or wall end has moved more than geometry_refresh h since the geometry
-  /// was computed (always true with geometry_refresh 0 or a changed particle count).
-  bool geometry_stale(std::span<const double> position, std::span<const double> walls) const;
+  /// What has moved more than geometry_refresh h since the geometry was computed: a particle
+  /// (always with geometry_refresh 0 or a changed particle or wall count), else a wall end.
+  enum class Staleness { fresh, walls, particles };
+  Staleness staleness(std::span<const double> position, std::span<const double> walls) const;
   /// share_ = phi V_i for the current geometry: the area the excess pressure acts on.
   void update_share();
 
   double packing_fraction_ = 1.0;
   std::vector<double> walls_at_geometry_;  // wall segments of the current geometry [m]
   std::uint64_t geometry_updates_ = 0;
+  std::uint64_t boundary_updates_ = 0;  // walls moved, particles not: the boundary alone
 };
 
 }  // namespace rockcut::fluid::sp

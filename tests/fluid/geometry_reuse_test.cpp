@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -108,6 +109,44 @@ TEST(GeometryReuse, GeometryIsRecomputedOnceAnythingHasMovedFurtherThanTheDistan
     // Without reuse every exchange recomputes, the t = 0 one included.
     EXPECT_EQ(model.geometry_updates(), refresh > 0 ? 2u : 251u) << "refresh " << refresh;
   }
+}
+
+TEST(GeometryReuse, AMovingWallAloneRecomputesOnlyTheBoundary) {
+  // A tool segment above the packing's top surface moves down 0.1 mm (0.067 h) per step onto
+  // it while the particles stay still. The kernel sums do not see walls, so the geometry is
+  // computed once (the t = 0 exchange) and only the boundary follows the tool, giving every step
+  // the boundary of a model that recomputes everything (refresh 0), bit for bit.
+  const Particles p = random_packing();
+  double top = -1.0;
+  for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.y(i));
+  auto make = [&](double refresh) {
+    sp::SpParams params = table1(kH);
+    params.geometry_refresh = refresh;
+    params.dynamic_solid = false;
+    auto model = std::make_unique<sp::ExplicitModel>(params);
+    model->initialise({p.radius, p.position});
+    return model;
+  };
+  const auto reused = make(0.002), fresh = make(0.0);
+  const std::vector<double> zero(2 * p.size(), 0.0);
+  std::vector<double> force(2 * p.size());
+  std::size_t sealed_before = 0, sealed_after = 0;
+  for (int k = 0; k <= 25; ++k) {
+    const double y = top + 2e-3 - 1e-4 * k;  // from 2 mm above the top centres to 0.5 mm below
+    const std::vector<double> tool = {-5e-3, y, 5e-3, y};
+    const Kinematics kin{p.position, zero, zero, tool};
+    const double dt = k == 0 ? 0.0 : 1e-6;
+    reused->step(dt, k * 1e-6, kin, force);
+    fresh->step(dt, k * 1e-6, kin, force);
+    const auto a = reused->boundary(), b = fresh->boundary();
+    ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "step " << k;
+    const auto sealed = static_cast<std::size_t>(std::count(a.begin(), a.end(), sp::Boundary::sealed));
+    (k == 0 ? sealed_before : sealed_after) = sealed;
+  }
+  EXPECT_EQ(reused->geometry_updates(), 1u);
+  EXPECT_EQ(reused->boundary_updates(), 25u);
+  EXPECT_EQ(fresh->geometry_updates(), 26u);
+  EXPECT_GT(sealed_after, sealed_before);  // the tool reached the surface and seals it
 }
 
 }  // namespace

@@ -1,6 +1,11 @@
 // The SP operators on a Geometry (paper section 3.2). Each is one streaming pass over the pairs
 // inside the support (the geometry's rows) that writes one value per particle (rows are
 // independent: no atomics would be needed to split them between threads).
+//
+// These are the operators' definitions, checked against closed forms (tests/fluid/). The models'
+// step applies the divergence, the Laplacian and the adjoint force through sp/step_operator.hpp,
+// the same sums with their per-pair coefficients computed once per geometry and checked against
+// these; `gradient` serves the gradient force form (fluid.force_form "gradient") directly.
 #pragma once
 
 #include <span>

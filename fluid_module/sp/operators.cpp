@@ -1,24 +1,12 @@
 #include "sp/operators.hpp"
 
 #include <algorithm>
-#include <cstring>
+
+#include "sp/vec2.hpp"
 
 namespace rockcut::fluid::sp {
 
 namespace {
-
-// A pair of doubles, (x, y) of one vector, in one SSE2 register (GCC/Clang vector extension; on
-// other targets the compiler splits it). The two hot passes below do their x and y arithmetic in
-// one instruction each. Lane k of every vector operation is the scalar operation of component
-// k, in the same order, so the results keep the bits of the scalar formulas
-// (tests/fluid/operator_bits_test.cpp); SSE2 has no fused multiply-add that could change them.
-typedef double Vec2 __attribute__((vector_size(16)));
-
-inline Vec2 load2(const double* p) {
-  Vec2 v;
-  std::memcpy(&v, p, sizeof v);  // an unaligned load (movupd)
-  return v;
-}
 
 // The rows of divergence() and laplacian(), alone or together (kDiv, kLap). Every sum has the same
 // terms in the same order whichever of the two is computed, so the fused call gives the bits of

@@ -148,13 +148,14 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
     ++boundary_updates_;
   }
+  // The step's coefficients follow the geometry (and share_, which changes only with it).
+  if (step_op_.version() != geo_.version) step_op_.build(geo_, share_);
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.
     const bool from_displacement = params_.strain_from == StrainFrom::displacement;
     const std::span<const double> field = from_displacement ? k.displacement : k.velocity_half;
     check_size(field, 2 * n, from_displacement ? "displacement" : "velocity_half");
-    if (step_op_.version() != geo_.version) step_op_.build(geo_, share_);
     if (laplacian_in_step_) {
       step_op_.divergence_laplacian(geo_, field, pressure_, strain_rate_, laplacian_);
     } else {
@@ -181,7 +182,6 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   if (params_.force_form == ForceForm::adjoint) {
     // The excess pressure acts on share_ (update_share).
     for (std::size_t i = 0; i < n; ++i) excess_[i] = pressure_[i] - params_.p_hydro_pa;
-    if (step_op_.version() != geo_.version) step_op_.build(geo_, share_);
     step_op_.adjoint_force(geo_, excess_, force);
     return;
   }

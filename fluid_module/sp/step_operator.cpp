@@ -2,23 +2,12 @@
 
 #include <cstring>
 
+#include "sp/vec2.hpp"
+
 // Every loop is a per-particle gather over the symmetric rows, as in sp/operators.cpp: OpenMP
 // threads split the particles and give the same bits for any thread count.
 
 namespace rockcut::fluid::sp {
-
-namespace {
-
-// (x, y) in one SSE2 register, as in sp/operators.cpp.
-typedef double Vec2 __attribute__((vector_size(16)));
-
-inline Vec2 load2(const double* p) {
-  Vec2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-}  // namespace
 
 void StepOperator::build(const Geometry& geo, std::span<const double> area) {
   const int n = static_cast<int>(geo.particles());
@@ -64,26 +53,10 @@ void StepOperator::build(const Geometry& geo, std::span<const double> area) {
   version_ = geo.version;
 }
 
-void StepOperator::divergence(const Geometry& geo, std::span<const double> vel,
-                              std::span<double> div) const {
-  const int n = static_cast<int>(geo.particles());
-  const int* begin = geo.row_begin.data();
-  const int* end = geo.row_end.data();
-  const int* nb = geo.neighbours.data();
-  const double* cl = c_lam_.data();
-  const double* u = vel.data();
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const Vec2 ui = load2(u + 2 * i);
-    Vec2 s = {0.0, 0.0};
-    for (int k = begin[i]; k < end[i]; ++k) s += load2(cl + 3 * k) * (load2(u + 2 * nb[k]) - ui);
-    div[i] = s[0] + s[1];
-  }
-}
-
-void StepOperator::divergence_laplacian(const Geometry& geo, std::span<const double> vel,
-                                        std::span<const double> a, std::span<double> div,
-                                        std::span<double> lap) const {
+template <bool kLap>
+void StepOperator::divergence_rows(const Geometry& geo, std::span<const double> vel,
+                                   std::span<const double> a, std::span<double> div,
+                                   std::span<double> lap) const {
   const int n = static_cast<int>(geo.particles());
   const int* begin = geo.row_begin.data();
   const int* end = geo.row_end.data();
@@ -94,17 +67,28 @@ void StepOperator::divergence_laplacian(const Geometry& geo, std::span<const dou
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const Vec2 ui = load2(u + 2 * i);
-    const double ai = p[i];
+    const double ai = kLap ? p[i] : 0.0;
     Vec2 s = {0.0, 0.0};
     double l = 0.0;
     for (int k = begin[i]; k < end[i]; ++k) {
       const int j = nb[k];
       s += load2(cl + 3 * k) * (load2(u + 2 * j) - ui);
-      l += cl[3 * k + 2] * (ai - p[j]);
+      if constexpr (kLap) l += cl[3 * k + 2] * (ai - p[j]);
     }
     div[i] = s[0] + s[1];
-    lap[i] = l;
+    if constexpr (kLap) lap[i] = l;
   }
+}
+
+void StepOperator::divergence(const Geometry& geo, std::span<const double> vel,
+                              std::span<double> div) const {
+  divergence_rows<false>(geo, vel, {}, div, {});
+}
+
+void StepOperator::divergence_laplacian(const Geometry& geo, std::span<const double> vel,
+                                        std::span<const double> a, std::span<double> div,
+                                        std::span<double> lap) const {
+  divergence_rows<true>(geo, vel, a, div, lap);
 }
 
 void StepOperator::adjoint_force(const Geometry& geo, std::span<const double> q,

@@ -46,6 +46,11 @@ class StepOperator {
   void adjoint_force(const Geometry& geo, std::span<const double> q, std::span<double> force) const;
 
  private:
+  /// The rows of divergence(), with the Laplacian of `a` in the same pass when kLap.
+  template <bool kLap>
+  void divergence_rows(const Geometry& geo, std::span<const double> vel, std::span<const double> a,
+                       std::span<double> div, std::span<double> lap) const;
+
   std::vector<double> c_lam_;  ///< per pair: c_x, c_y, lam
   std::vector<double> b_;      ///< per pair: b_x, b_y
   std::vector<double> c_sum_;  ///< per particle: C_i = A_i sum_k c_k (x, y)

@@ -13,8 +13,8 @@ void RunSession::loop() {
   next_series_step_ = 0;
   next_frame_index_ = 0;
   forces_held_ = false;
-  dem_busy0_s_ = dem_busy_s_;
-  fluid_busy0_s_ = fluid_busy_s_;
+  dem_busy_.start_loop();
+  fluid_busy_.start_loop();
 
   if (coupled_) {
     exchange(0, true);  // t = 0: a^0 includes the fluid force
@@ -86,7 +86,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
   }
   const wire::Kinematics& kinematics = reply_.envelope.kinematics();
   const double t = kinematics.time_s();
-  dem_busy_s_ = reply_.envelope.busy_s();
+  dem_busy_.read(reply_.envelope);
 
   // 2. Fluid: advance the pressure by N dt (nothing at t = 0) and return the forces. The DEM
   //    computes its contact forces meanwhile. Arrays are forwarded, not copied.
@@ -108,7 +108,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
   bytes_exchanged_ += reply_.payload_bytes();
   fluid_request_.take_arrays(reply_);
   fluid_->link->request(fluid_request_, fluid_reply_);
-  fluid_busy_s_ = fluid_reply_.envelope.busy_s();
+  fluid_busy_.read(fluid_reply_.envelope);
   if (fluid_reply_.envelope.fluid_result().has_guard()) {
     throw GuardStop{fluid_->link->label(), fluid_reply_.envelope.fluid_result().guard()};
   }
@@ -130,7 +130,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
   if (!reply_.envelope.has_step_report()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered ApplyForces without StepReport");
   }
-  dem_busy_s_ = reply_.envelope.busy_s();
+  dem_busy_.read(reply_.envelope);
   scalars_.clear();
   for (const auto& [name, value] : fluid_reply_.envelope.fluid_result().scalars()) {
     scalars_.emplace_back("fluid_" + name, value);
@@ -149,7 +149,7 @@ void RunSession::advance_dry(unsigned steps) {
   if (!reply_.envelope.has_step_report()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered Advance without StepReport");
   }
-  dem_busy_s_ = reply_.envelope.busy_s();
+  dem_busy_.read(reply_.envelope);
   ++exchanges_;
   scalars_.clear();
   record_step_report(reply_.envelope.step_report());

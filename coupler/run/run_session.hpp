@@ -112,8 +112,19 @@ class RunSession {
   std::vector<PressureNodeBox> nodes_;      // sent as probes when the fluid has a pressure
   std::optional<PecletNumber> peclet_;
   std::optional<std::string> accuracy_line_;  // expected error from docs/accuracy.md, if covered
-  // Cumulative handling time of each module (Envelope.busy_s) at the start of the loop and now.
-  double dem_busy0_s_ = 0.0, dem_busy_s_ = 0.0, fluid_busy0_s_ = 0.0, fluid_busy_s_ = 0.0;
+  // Each module's handling time (Envelope.busy_s, after_reply_s) at the start of the loop and now.
+  struct BusyTime {
+    double busy0_s = 0.0, busy_s = 0.0, after0_s = 0.0, after_s = 0.0;
+    void read(const wire::Envelope& e) {
+      busy_s = e.busy_s();
+      after_s = e.after_reply_s();
+    }
+    void start_loop() {
+      busy0_s = busy_s;
+      after0_s = after_s;
+    }
+  };
+  BusyTime dem_busy_, fluid_busy_;
   std::unique_ptr<CalibrationSummary> calibration_;
   bool dem_logs_breaks_ = false;  // the DEM hands out its bond breaks with every frame
   Summary summary_;

@@ -30,7 +30,8 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
   Message request;
   Message reply;
   using clock = std::chrono::steady_clock;
-  double busy_s = 0.0;  // handling time, reported in every reply's Envelope.busy_s
+  double busy_s = 0.0;   // handling time, reported in every reply's Envelope.busy_s
+  double after_s = 0.0;  // the part of it after replying (Envelope.after_reply_s)
   for (;;) {
     spin_until_readable(socket);
     request.receive(socket);
@@ -56,10 +57,13 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
     }
     busy_s += std::chrono::duration<double>(clock::now() - start).count();
     reply.envelope.set_busy_s(busy_s);
+    reply.envelope.set_after_reply_s(after_s);
     reply.send(socket);
     const auto after = clock::now();
     handler.after_reply();
-    busy_s += std::chrono::duration<double>(clock::now() - after).count();
+    const double after_reply = std::chrono::duration<double>(clock::now() - after).count();
+    busy_s += after_reply;
+    after_s += after_reply;
   }
 }
 

@@ -9,7 +9,7 @@ run, the median over --repeat runs of:
   wall [s]           the coupler's loop (summary.json wall_time_s)
   p-steps/s          particle-steps per second of the coupled run
   dem, fluid [%]     each module's own handling time (Envelope.busy_s) as a share of the wall time
-  dem ovl [%]        the part of the DEM's that comes after its reply (Envelope.after_reply_s):
+  dem ovl [%]        the part of the DEM's share spent after its replies (Envelope.after_reply_s):
                      its contact forces, computed while the fluid steps
   rest [%]           wall - dem - fluid: transport, the coupler's output and waiting (negative when
                      the fluid's work hides behind the DEM's contact forces, which overlap it)

@@ -420,9 +420,7 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
                wall > 0 ? static_cast<double>(dem_.init.particle_count()) * step_ / wall : 0.0);
   // Where the wall time went: each module's own handling time during the loop, and the part of it
   // after its replies, which overlaps the other module's work (the DEM's contact forces during
-  // the fluid step, the fluid's next geometry during the DEM's steps). The busy time minus that
-  // part lies on the critical path; the rest of the wall is the transport, the coupler's output
-  // and waiting.
+  // the fluid step). The rest of the wall is the transport, the coupler's output and waiting.
   summary_.set("dem_busy_s", dem_busy_.busy_s - dem_busy_.busy0_s);
   summary_.set("dem_after_reply_s", dem_busy_.after_s - dem_busy_.after0_s);
   // The energy budget of DESIGN section 5 at the end (the DEM reports it with every step report).

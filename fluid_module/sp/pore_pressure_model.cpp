@@ -112,7 +112,7 @@ void PorePressureModel::initialise(const StaticData& data) {
   }
   strain_rate_.assign(n, 0.0);
   source_.assign(n, 0.0);
-  excess_.assign(n, 0.0);
+  area_excess_.assign(n, 0.0);
   update_share();
   area_.resize(n);
   for (std::size_t i = 0; i < n; ++i) area_[i] = std::numbers::pi * radius_[i] * radius_[i];
@@ -148,8 +148,8 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
     ++boundary_updates_;
   }
-  // The step's coefficients follow the geometry (and share_, which changes only with it).
-  if (step_op_.version() != geo_.version) step_op_.build(geo_, share_);
+  // The step's coefficients follow the geometry.
+  if (step_op_.version() != geo_.version) step_op_.build(geo_);
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.
@@ -180,9 +180,11 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   }
 
   if (params_.force_form == ForceForm::adjoint) {
-    // The excess pressure acts on share_ (update_share).
-    for (std::size_t i = 0; i < n; ++i) excess_[i] = pressure_[i] - params_.p_hydro_pa;
-    step_op_.adjoint_force(geo_, excess_, force);
+    // The excess pressure acts on share_ (update_share): g_i = A_i (p_i - p_hydro) [N/m].
+    for (std::size_t i = 0; i < n; ++i) {
+      area_excess_[i] = share_[i] * (pressure_[i] - params_.p_hydro_pa);
+    }
+    step_op_.adjoint_force(geo_, area_excess_, force);
     return;
   }
   // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].

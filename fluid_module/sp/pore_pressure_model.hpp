@@ -97,10 +97,10 @@ class PorePressureModel : public FluidModel {
   /// the divergence's pass over the pairs (divergence_laplacian), into laplacian_ [Pa/m^2].
   bool laplacian_in_step_ = false;
   std::vector<double> laplacian_;
-  std::vector<double> excess_, area_;  // p - p_hydro [Pa]; pi r^2 [m^2]
+  std::vector<double> area_excess_, area_;  // share_ (p - p_hydro) [N/m]; pi r^2 [m^2]
   std::vector<double> share_;          // phi V_i [m^2], set with the geometry (update_share)
   /// The step's divergence, Laplacian and adjoint force as per-pair coefficients of the current
-  /// geometry (and share_), rebuilt when the geometry changes.
+  /// geometry, rebuilt when the geometry changes.
   StepOperator step_op_;
   std::vector<Boundary> boundary_;
   Sides sides_;

@@ -9,10 +9,10 @@
 
 namespace rockcut::fluid::sp {
 
-void StepOperator::build(const Geometry& geo, std::span<const double> area) {
+void StepOperator::build(const Geometry& geo) {
   const int n = static_cast<int>(geo.particles());
   c_lam_.resize(3 * geo.neighbours.size());
-  b_.resize(2 * geo.neighbours.size());
+  t_.resize(2 * geo.neighbours.size());
   c_sum_.resize(2 * static_cast<std::size_t>(n));
   const int* begin = geo.row_begin.data();
   const int* end = geo.row_end.data();
@@ -21,9 +21,8 @@ void StepOperator::build(const Geometry& geo, std::span<const double> area) {
   const double* f = geo.f.data();
   const double* inv = geo.l_inverse.data();
   const double* x = geo.position.data();
-  const double* a = area.data();
-  double* cl = c_lam_.data();
-  double* b = b_.data();
+  float* cl = c_lam_.data();
+  float* t = t_.data();
   double* cs = c_sum_.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
@@ -36,19 +35,21 @@ void StepOperator::build(const Geometry& geo, std::span<const double> area) {
       const double* mj = inv + 3 * j;
       // c = B_ij = -V_j F_ij L_i^{-1} d  (L^{-1} symmetric: xx, xy, yy)
       const double s = -v[j] * f[k];
-      const double cx = s * (mi[0] * dx + mi[1] * dy), cy = s * (mi[1] * dx + mi[2] * dy);
+      const float cx = opaque_float(s * (mi[0] * dx + mi[1] * dy));
+      const float cy = opaque_float(s * (mi[1] * dx + mi[2] * dy));
       cl[3 * k] = cx;
       cl[3 * k + 1] = cy;
-      cl[3 * k + 2] = 2.0 * v[j] * f[k];
-      sx += cx;
+      cl[3 * k + 2] = static_cast<float>(2.0 * v[j] * f[k]);
+      sx += cx;  // C_i of the stored floats, so that the force's transpose is exact
       sy += cy;
-      // b = A_j B_ji = A_j (-V_i F_ij L_j^{-1} (x_i - x_j)) = A_j V_i F_ij L_j^{-1} d
-      const double t = a[j] * v[i] * f[k];
-      b[2 * k] = t * (mj[0] * dx + mj[1] * dy);
-      b[2 * k + 1] = t * (mj[1] * dx + mj[2] * dy);
+      // t = B_ji = -V_i F_ji L_j^{-1} (x_i - x_j). Row j computes its c for i with -V_i, the same
+      // F (r is the same), L_j^{-1} and -d: negations are exact, so this is the same double.
+      const double u = v[i] * f[k];
+      t[2 * k] = static_cast<float>(u * (mj[0] * dx + mj[1] * dy));
+      t[2 * k + 1] = static_cast<float>(u * (mj[1] * dx + mj[2] * dy));
     }
-    cs[2 * i] = a[i] * sx;
-    cs[2 * i + 1] = a[i] * sy;
+    cs[2 * i] = sx;
+    cs[2 * i + 1] = sy;
   }
   version_ = geo.version;
 }
@@ -61,7 +62,7 @@ void StepOperator::divergence_rows(const Geometry& geo, std::span<const double> 
   const int* begin = geo.row_begin.data();
   const int* end = geo.row_end.data();
   const int* nb = geo.neighbours.data();
-  const double* cl = c_lam_.data();
+  const float* cl = c_lam_.data();
   const double* u = vel.data();
   const double* p = a.data();
 #pragma omp parallel for schedule(static)
@@ -72,8 +73,8 @@ void StepOperator::divergence_rows(const Geometry& geo, std::span<const double> 
     double l = 0.0;
     for (int k = begin[i]; k < end[i]; ++k) {
       const int j = nb[k];
-      s += load2(cl + 3 * k) * (load2(u + 2 * j) - ui);
-      if constexpr (kLap) l += cl[3 * k + 2] * (ai - p[j]);
+      s += load2f(cl + 3 * k) * (load2(u + 2 * j) - ui);
+      if constexpr (kLap) l += static_cast<double>(cl[3 * k + 2]) * (ai - p[j]);
     }
     div[i] = s[0] + s[1];
     if constexpr (kLap) lap[i] = l;
@@ -91,20 +92,20 @@ void StepOperator::divergence_laplacian(const Geometry& geo, std::span<const dou
   divergence_rows<true>(geo, vel, a, div, lap);
 }
 
-void StepOperator::adjoint_force(const Geometry& geo, std::span<const double> q,
+void StepOperator::adjoint_force(const Geometry& geo, std::span<const double> area_q,
                                  std::span<double> force) const {
   const int n = static_cast<int>(geo.particles());
   const int* begin = geo.row_begin.data();
   const int* end = geo.row_end.data();
   const int* nb = geo.neighbours.data();
-  const double* b = b_.data();
+  const float* t = t_.data();
   const double* cs = c_sum_.data();
-  const double* qs = q.data();
+  const double* g = area_q.data();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     Vec2 s = {0.0, 0.0};
-    for (int k = begin[i]; k < end[i]; ++k) s += load2(b + 2 * k) * qs[nb[k]];
-    const Vec2 fi = s - qs[i] * load2(cs + 2 * i);  // sum_j A_j q_j B_ji - A_i q_i sum_j B_ij
+    for (int k = begin[i]; k < end[i]; ++k) s += load2f(t + 2 * k) * g[nb[k]];
+    const Vec2 fi = s - g[i] * load2(cs + 2 * i);  // sum_j A_j q_j B_ji - A_i q_i sum_j B_ij
     std::memcpy(force.data() + 2 * i, &fi, sizeof fi);
   }
 }

@@ -10,13 +10,21 @@
 // x_j, V_j and L_j^{-1} out of the step's two passes over the pairs.
 //
 // Per pair (i, j) of row i, at the same index k as Geometry::neighbours:
-//   c_k   = B_ij = -V_j F_ij L_i^{-1} (x_j - x_i)          (eq. 17: div_i = sum_k c_k . (v_j - v_i))
-//   lam_k = 2 V_j F_ij                                     (eq. 20: lap_i = sum_k lam_k (a_i - a_j))
-//   b_k   = A_j B_ji = A_j V_i F_ij L_j^{-1} (x_j - x_i)  (adjoint: F_i = sum_k b_k q_j - q_i C_i)
-// and per particle C_i = A_i sum_k B_ij. A_j is the area the excess pressure acts on.
+//   c_k   = B_ij = -V_j F_ij L_i^{-1} (x_j - x_i)   (eq. 17: div_i = sum_k c_k . (v_j - v_i))
+//   lam_k = 2 V_j F_ij                              (eq. 20: lap_i = sum_k lam_k (a_i - a_j))
+//   t_k   = B_ji = V_i F_ij L_j^{-1} (x_j - x_i)    (adjoint: F_i = sum_k t_k g_j - g_i C_i)
+// and per particle C_i = sum_k c_k, with g = A q the excess pressure times the area it acts on.
+// t_k has the bits of c at the mirror slot (row j, neighbour i), so the force is the exact
+// negative transpose of the divergence and the adjoint energy identity holds to the rounding of
+// the sums, as with the operators.
 //
-// The results equal the operators' up to the order of the floating-point operations (a few ulps
-// of the largest term; tests/fluid/step_operator_test.cpp).
+// The coefficients are stored as floats (widened to doubles in the passes, which sum in double):
+// the passes are bound by streaming them (58,000 particles: 1.3 million pairs), and floats take
+// the step from 48 to 28 bytes per pair. The rounding moves each coefficient by at most 2^-24 =
+// 6e-8 of itself; the geometry they come from is itself reused until a particle has moved
+// 0.002 h, an operator error of ~1e-3 (docs/fluid_model.md, "Reusing the geometry").
+//
+// The results equal the operators' to that rounding (tests/fluid/step_operator_test.cpp).
 #pragma once
 
 #include <cstdint>
@@ -29,8 +37,8 @@ namespace rockcut::fluid::sp {
 
 class StepOperator {
  public:
-  /// Computes the coefficients for `geo` with the pressure areas `area` [m^2] (1 per particle).
-  void build(const Geometry& geo, std::span<const double> area);
+  /// Computes the coefficients for `geo`.
+  void build(const Geometry& geo);
 
   /// The geometry version the coefficients belong to (Geometry::version).
   std::uint64_t version() const { return version_; }
@@ -41,9 +49,10 @@ class StepOperator {
   void divergence_laplacian(const Geometry& geo, std::span<const double> vel,
                             std::span<const double> a, std::span<double> div,
                             std::span<double> lap) const;
-  /// adjoint_pressure_force(geo, area, q, force, work) of sp/operators.hpp, with the areas given
-  /// to build(). `force` gets 2 values per particle (overwritten).
-  void adjoint_force(const Geometry& geo, std::span<const double> q, std::span<double> force) const;
+  /// adjoint_pressure_force(geo, area, q, force, work) of sp/operators.hpp, given g_i = A_i q_i
+  /// [N/m: Pa times m^2 per m of thickness]. `force` gets 2 values per particle (overwritten).
+  void adjoint_force(const Geometry& geo, std::span<const double> area_q,
+                     std::span<double> force) const;
 
  private:
   /// The rows of divergence(), with the Laplacian of `a` in the same pass when kLap.
@@ -51,9 +60,9 @@ class StepOperator {
   void divergence_rows(const Geometry& geo, std::span<const double> vel, std::span<const double> a,
                        std::span<double> div, std::span<double> lap) const;
 
-  std::vector<double> c_lam_;  ///< per pair: c_x, c_y, lam
-  std::vector<double> b_;      ///< per pair: b_x, b_y
-  std::vector<double> c_sum_;  ///< per particle: C_i = A_i sum_k c_k (x, y)
+  std::vector<float> c_lam_;   ///< per pair: c_x, c_y, lam
+  std::vector<float> t_;       ///< per pair: t_x, t_y
+  std::vector<double> c_sum_;  ///< per particle: C_i = sum_k c_k (x, y), of the stored floats
   std::uint64_t version_ = ~std::uint64_t{0};
 };
 

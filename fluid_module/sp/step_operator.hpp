@@ -19,8 +19,8 @@
 // the sums, as with the operators.
 //
 // The coefficients are stored as floats (widened to doubles in the passes, which sum in double):
-// the passes are bound by streaming them (58,000 particles: 1.3 million pairs), and floats take
-// the step from 48 to 28 bytes per pair. The rounding moves each coefficient by at most 2^-24 =
+// at paper scale the passes are bound mostly by streaming them (58,000 particles: 1.3 million
+// pairs), and floats take the step from 48 to 28 bytes per pair (1.3 times faster, bench/README.md). The rounding moves each coefficient by at most 2^-24 =
 // 6e-8 of itself; the geometry they come from is itself reused until a particle has moved
 // 0.002 h, an operator error of ~1e-3 (docs/fluid_model.md, "Reusing the geometry").
 //

@@ -20,9 +20,10 @@
 //
 // The coefficients are stored as floats (widened to doubles in the passes, which sum in double):
 // at paper scale the passes are bound mostly by streaming them (58,000 particles: 1.3 million
-// pairs), and floats take the step from 48 to 28 bytes per pair (1.3 times faster, bench/README.md). The rounding moves each coefficient by at most 2^-24 =
-// 6e-8 of itself; the geometry they come from is itself reused until a particle has moved
-// 0.002 h, an operator error of ~1e-3 (docs/fluid_model.md, "Reusing the geometry").
+// pairs), and floats take the step from 48 to 28 bytes per pair (1.3 times faster; bench/README.md,
+// session 16). The rounding moves each coefficient by at most 2^-24 = 6e-8 of itself; the
+// geometry they come from is itself reused until a particle has moved 0.002 h, an operator error
+// of ~1e-3 (docs/fluid_model.md, "Reusing the geometry").
 //
 // The results equal the operators' to that rounding (tests/fluid/step_operator_test.cpp).
 #pragma once

@@ -15,20 +15,22 @@ namespace {
 // the kernel's constants) and reloads them for every pair (measured: 1.5x). Every pair is written
 // and the write position advances only for a pair inside: a branch on it would be mispredicted
 // for the sixth of the pairs that lie in the skin.
-void pair_kernels(const NeighbourList& list, const WendlandC2& kernel, const double* x,
-                  Geometry& g) {
-  const int n = static_cast<int>(list.particles());
+template <class Rows>
+void pair_kernels(const Rows& rows, const NeighbourList& list, const WendlandC2& kernel,
+                  const double* x, Geometry& g, double* volume0) {
+  const int count = rows.size();
   const int* __restrict off = list.offsets().data();
   const int* __restrict nb = list.neighbours().data();
   int* __restrict kept = g.neighbours.data();
   int* __restrict row_end = g.row_end.data();
   double* __restrict ws = g.w.data();
   double* __restrict fs = g.f.data();
-  double* __restrict volume = g.volume.data();
+  double* __restrict volume = volume0;
   const WendlandC2 k = kernel;  // a local copy: its constants stay in registers
   const double w0 = k.w0();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int r = 0; r < count; ++r) {
+    const int i = rows[r];
     const double xi = x[2 * i], yi = x[2 * i + 1];
     double sum_w = w0;
     int out = off[i];
@@ -48,21 +50,21 @@ void pair_kernels(const NeighbourList& list, const WendlandC2& kernel, const dou
   }
 }
 
-// One partition-of-unity refinement V_i <- V_i / sum_j V_j W_ij (Jacobi: all from the old V).
-void refine_volumes(double w0, Geometry& g) {
-  const int n = static_cast<int>(g.particles());
+// One partition-of-unity refinement V_i <- V_i / sum_j V_j W_ij (Jacobi: all from the old V),
+// from the iterate v into out.
+template <class Rows>
+void refine_volumes(const Rows& rows, double w0, const double* v, double* out, Geometry& g) {
+  const int count = rows.size();
   const int* begin = g.row_begin.data();
   const int* end = g.row_end.data();
   const int* nb = g.neighbours.data();
-  const double* v = g.volume.data();
-  double* out = g.scratch.data();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int r = 0; r < count; ++r) {
+    const int i = rows[r];
     double s = v[i] * w0;
     for (int k = begin[i]; k < end[i]; ++k) s += v[nb[k]] * g.w[k];
     out[i] = v[i] / s;
   }
-  g.volume.swap(g.scratch);
 }
 
 // L_i = sum_j V_j (x_j - x_i) (x) grad_i W_ij = sum_j V_j (-F_ij) d d^T with d = x_j - x_i: the
@@ -70,8 +72,9 @@ void refine_volumes(double w0, Geometry& g) {
 // Lucy's div r of eq. 24, sum_j (m_j / rho_j) (x_j - x_i) . grad_i W_ij = sum_j V_j (-F_ij) r^2.
 // The difference form (x_j - x_i) is used so that div r does not depend on where the origin is.
 // With the same volumes, -sum_j (m_j / rho_j) grad_i W_ij points out of the surface.
-void correction_matrices(std::span<const double> lucy_volume, Geometry& g) {
-  const int n = static_cast<int>(g.particles());
+template <class Rows>
+void correction_matrices(const Rows& rows, std::span<const double> lucy_volume, Geometry& g) {
+  const int count = rows.size();
   const int* begin = g.row_begin.data();
   const int* end = g.row_end.data();
   const int* nb = g.neighbours.data();
@@ -79,7 +82,8 @@ void correction_matrices(std::span<const double> lucy_volume, Geometry& g) {
   const double* vl = lucy_volume.data();
   const double* x = g.position.data();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int r = 0; r < count; ++r) {
+    const int i = rows[r];
     double a = 0.0, b = 0.0, c = 0.0, divr = 0.0, nx = 0.0, ny = 0.0;
     const double xi = x[2 * i], yi = x[2 * i + 1];
     for (int k = begin[i]; k < end[i]; ++k) {
@@ -128,6 +132,31 @@ void correction_matrices(std::span<const double> lucy_volume, Geometry& g) {
   }
 }
 
+// The volume iterate m of a geometry with `iterations` refinements: V^iterations is geo.volume.
+double* volume_iterate(Geometry& g, unsigned m, unsigned iterations) {
+  return m == iterations ? g.volume.data() : g.volume_iterates.data() + m * g.volume.size();
+}
+
+// The stages of a geometry, each over its rows (all of them, or the rings of a local refresh).
+template <class Rows>
+void kernel_stage(const Rows& rows, const NeighbourList& list, const WendlandC2& kernel,
+                  unsigned iterations, Geometry& g) {
+  pair_kernels(rows, list, kernel, g.position.data(), g, volume_iterate(g, 0, iterations));
+}
+template <class Rows>
+void volume_stage(const Rows& rows, double w0, unsigned m, unsigned iterations, Geometry& g) {
+  refine_volumes(rows, w0, volume_iterate(g, m - 1, iterations), volume_iterate(g, m, iterations),
+                 g);
+}
+
+// Rows with level[i] <= ring, in index order (the order of a full update's memory sweep).
+void rows_within(const std::vector<std::uint8_t>& level, unsigned ring, std::vector<int>& out) {
+  out.clear();
+  for (std::size_t i = 0; i < level.size(); ++i) {
+    if (level[i] <= ring) out.push_back(static_cast<int>(i));
+  }
+}
+
 }  // namespace
 
 void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
@@ -144,15 +173,80 @@ void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
   geo.w.resize(pairs);
   geo.f.resize(pairs);
   geo.volume.resize(n);
-  geo.scratch.resize(n);
+  geo.volume_iterates.resize(volume_iterations * n);
   geo.l_inverse.resize(3 * n);
   geo.correction.resize(n);
   geo.div_r.resize(n);
   geo.normal.resize(2 * n);
-  pair_kernels(list, kernel, geo.position.data(), geo);
-  for (unsigned k = 0; k < volume_iterations; ++k) refine_volumes(kernel.w0(), geo);
-  correction_matrices(lucy_volume, geo);
+  const AllRows all{static_cast<int>(n)};
+  kernel_stage(all, list, kernel, volume_iterations, geo);
+  for (unsigned m = 1; m <= volume_iterations; ++m) {
+    volume_stage(all, kernel.w0(), m, volume_iterations, geo);
+  }
+  correction_matrices(all, lucy_volume, geo);
+  geo.volume_iterations = volume_iterations;
   ++geo.version;
+}
+
+bool refresh_geometry(const NeighbourList& list, const WendlandC2& kernel,
+                      std::span<const double> position, std::span<const int> moved,
+                      std::span<const double> lucy_volume, unsigned volume_iterations,
+                      double max_fraction, LocalRefresh& s, Geometry& geo) {
+  const std::size_t n = geo.particles();
+  if (list.particles() != n || list.pairs() != geo.neighbours.size() ||
+      position.size() != 2 * n || geo.volume_iterations != volume_iterations) {
+    return false;
+  }
+  // The rings, breadth first from the moved particles (level 0). Ring 1 follows the list's rows:
+  // any listed pair of a moved particle may have crossed h. From ring 1 on the geometry's rows of
+  // the old configuration serve: a pair inside h in X' but not before has a moved end, so both
+  // its ends are in ring 1 already.
+  const unsigned rings = volume_iterations + 3;
+  constexpr std::uint8_t kNone = 0xff;
+  s.level.assign(n, kNone);
+  s.rows.clear();
+  for (int i : moved) {
+    if (s.level[static_cast<std::size_t>(i)] == kNone) {
+      s.level[static_cast<std::size_t>(i)] = 0;
+      s.rows.push_back(i);
+    }
+  }
+  const auto limit = static_cast<std::size_t>(max_fraction * static_cast<double>(n));
+  std::size_t from = 0;
+  for (unsigned ring = 1; ring <= rings; ++ring) {
+    const std::size_t to = s.rows.size();
+    for (std::size_t r = from; r < to; ++r) {
+      const int i = s.rows[r];
+      const int* nb = ring == 1 ? list.neighbours().data() : geo.neighbours.data();
+      const int b = ring == 1 ? list.offsets()[i] : geo.row_begin[i];
+      const int e = ring == 1 ? list.offsets()[i + 1] : geo.row_end[i];
+      for (int k = b; k < e; ++k) {
+        const auto j = static_cast<std::size_t>(nb[k]);
+        if (s.level[j] != kNone) continue;
+        s.level[j] = static_cast<std::uint8_t>(ring);
+        s.rows.push_back(nb[k]);
+      }
+    }
+    if (s.rows.size() > limit) return false;  // nothing changed yet
+    from = to;
+  }
+
+  // X': the moved particles at their new positions, the others where the geometry had them.
+  for (int i : moved) {
+    geo.position[2 * i] = position[2 * i];
+    geo.position[2 * i + 1] = position[2 * i + 1];
+  }
+  rows_within(s.level, 1, s.stage);
+  kernel_stage(RowList{s.stage}, list, kernel, volume_iterations, geo);
+  for (unsigned m = 1; m <= volume_iterations; ++m) {
+    rows_within(s.level, 1 + m, s.stage);
+    volume_stage(RowList{s.stage}, kernel.w0(), m, volume_iterations, geo);
+  }
+  rows_within(s.level, volume_iterations + 2, s.stage);
+  correction_matrices(RowList{s.stage}, lucy_volume, geo);
+  rows_within(s.level, rings, s.coefficient_rows);
+  ++geo.version;
+  return true;
 }
 
 }  // namespace rockcut::fluid::sp

@@ -50,7 +50,10 @@ struct Geometry {
   /// Lucy's uncorrected gradient of the constant 1 with the sign flipped, sum_j (m_j / rho_j)
   /// F_ij (x_j - x_i) [1/m], 2 per particle: 0 inside, the outward normal at a surface.
   std::vector<double> normal;
-  std::vector<double> scratch; ///< per particle, for the volume iterations
+  /// The volume iterates V^0 .. V^(m-1) of the m refinements, n each (`volume` is V^m). A local
+  /// refresh (refresh_geometry) recomputes each of them on its own ring of rows.
+  std::vector<double> volume_iterates;
+  unsigned volume_iterations = 0;
 
   std::size_t particles() const { return volume.size(); }
   /// The pairs inside the support, both directions (counted over the rows).
@@ -73,6 +76,18 @@ struct Geometry {
 /// times. 0.05 bounds that amplification at 20.
 inline constexpr double kMinEigenRatio = 0.05;
 
+/// The rows a per-row loop visits: all of them, or a list (a local refresh's rings).
+struct AllRows {
+  int n;
+  int size() const { return n; }
+  int operator[](int r) const { return r; }
+};
+struct RowList {
+  const std::vector<int>& rows;
+  int size() const { return static_cast<int>(rows.size()); }
+  int operator[](int r) const { return rows[static_cast<std::size_t>(r)]; }
+};
+
 /// Recomputes `geo` for `position` (interleaved x, y [m]) with the lists of `list` (current for
 /// these positions). SP volumes: V_i = 1 / sum_j W_ij (self term included), then
 /// `volume_iterations` times V_i <- V_i / sum_j V_j W_ij. `lucy_volume` [m^2] are the volumes
@@ -80,5 +95,28 @@ inline constexpr double kMinEigenRatio = 0.05;
 void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
                      std::span<const double> position, std::span<const double> lucy_volume,
                      unsigned volume_iterations, Geometry& geo);
+
+/// Scratch of refresh_geometry, kept between calls (no allocation once sizes settle).
+struct LocalRefresh {
+  std::vector<std::uint8_t> level;  ///< per particle: its ring (0 = moved), 0xff = none
+  std::vector<int> rows;            ///< the rings' rows, breadth first
+  std::vector<int> stage;           ///< the rows of one stage, in index order
+  /// After a refresh: the rows whose step coefficients (sp/step_operator.hpp) changed, in index
+  /// order (ring volume_iterations + 3).
+  std::vector<int> coefficient_rows;
+};
+
+/// A local refresh: moves the particles `moved` to `position` in geo.position, and recomputes
+/// every row that depends on them, ring by ring of neighbour rows: the pair kernels and V^0 of
+/// the rows that list a moved particle (ring 1), each volume iterate one ring further, L_i, div r
+/// and the normal one more. The result is, bit for bit, update_geometry on the new geo.position
+/// (X': some particles moved, the others where the geometry had them), because every row is
+/// computed alone in a fixed order. `list` must be the list of the geometry (not rebuilt since),
+/// and valid for X'. Returns false and changes nothing when the rings would hold more than
+/// max_fraction of the particles (a full update is then cheaper) or `geo` does not match `list`.
+bool refresh_geometry(const NeighbourList& list, const WendlandC2& kernel,
+                      std::span<const double> position, std::span<const int> moved,
+                      std::span<const double> lucy_volume, unsigned volume_iterations,
+                      double max_fraction, LocalRefresh& scratch, Geometry& geo);
 
 }  // namespace rockcut::fluid::sp

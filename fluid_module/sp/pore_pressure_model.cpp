@@ -132,14 +132,20 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     throw std::invalid_argument("fluid: step with dt_s = " + std::to_string(dt_s));
   }
   const Staleness stale = staleness(k.position, k.wall_segments);
+  bool local = false;
   if (stale == Staleness::particles) {
-    list_.update(k.position);
-    update_geometry(list_, kernel_, k.position, lucy_volume_, params_.volume_iterations, geo_);
+    const bool rebuilt = list_.update(k.position);
+    local = !rebuilt && params_.geometry_refresh > 0.0 && refresh_locally(k.position);
+    if (!local) {
+      update_geometry(list_, kernel_, k.position, lucy_volume_, params_.volume_iterations, geo_);
+    }
+    // On the geometry's positions X' (the current ones after a full update).
     counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
-                                k.position, radius_, sides_, boundary_, k.wall_segments);
+                                geo_.position, radius_, sides_, boundary_, k.wall_segments);
     walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
     update_share();
     ++geometry_updates_;
+    local_updates_ += local;
   } else if (stale == Staleness::walls) {
     // Only a wall (the tool) has moved: the kernel sums do not see walls, so only the boundary
     // (which particles the walls seal) is recomputed, on the geometry's own positions.
@@ -149,7 +155,13 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     ++boundary_updates_;
   }
   // The step's coefficients follow the geometry.
-  if (step_op_.version() != geo_.version) step_op_.build(geo_);
+  if (step_op_.version() != geo_.version) {
+    if (local) {
+      step_op_.rebuild_rows(geo_, refresh_.coefficient_rows);
+    } else {
+      step_op_.build(geo_);
+    }
+  }
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.
@@ -201,6 +213,22 @@ void PorePressureModel::update_share() {
   // Summed over the grains it is sum pi r^2, as in eq. 21. It changes only with the geometry.
   share_.resize(geo_.volume.size());
   for (std::size_t i = 0; i < share_.size(); ++i) share_[i] = packing_fraction_ * geo_.volume[i];
+}
+
+bool PorePressureModel::refresh_locally(std::span<const double> position) {
+  // The particles that moved more than kLocalMoveFraction of the refresh distance take their new
+  // positions; the others lag by less than the distance, as with a full update's guarantee.
+  const double limit = kLocalMoveFraction * params_.geometry_refresh * params_.h_m;
+  const double limit2 = limit * limit;
+  const double* x = position.data();
+  const double* x0 = geo_.position.data();
+  moved_.clear();
+  for (std::size_t i = 0; i < radius_.size(); ++i) {
+    const double dx = x[2 * i] - x0[2 * i], dy = x[2 * i + 1] - x0[2 * i + 1];
+    if (dx * dx + dy * dy > limit2) moved_.push_back(static_cast<int>(i));
+  }
+  return refresh_geometry(list_, kernel_, position, moved_, lucy_volume_,
+                          params_.volume_iterations, kLocalMaxFraction, refresh_, geo_);
 }
 
 PorePressureModel::Staleness PorePressureModel::staleness(std::span<const double> position,
@@ -257,6 +285,7 @@ void PorePressureModel::scalars(std::vector<std::pair<std::string, double>>& out
   out.emplace_back("cavitated_particles", static_cast<double>(cavitated_));
   out.emplace_back("neighbour_builds", static_cast<double>(list_.builds()));
   out.emplace_back("geometry_updates", static_cast<double>(geometry_updates_));
+  out.emplace_back("geometry_local_updates", static_cast<double>(local_updates_));
   out.emplace_back("boundary_updates", static_cast<double>(boundary_updates_));
   add_scalars(out);
 }

@@ -43,6 +43,15 @@ namespace rockcut::fluid::sp {
 /// measured; it binds only N > 1 (N = 1 is always allowed, also without damping).
 inline constexpr double kFluidStiffnessC = 1.5;
 
+/// A local geometry refresh (docs/fluid_model.md, "Reusing the geometry") moves the particles that
+/// have moved more than this fraction of fluid.geometry_refresh_distance, not only the one that
+/// crossed it: the particles near the tool move alike, and taking them along with the first
+/// postpones the next refresh, at the cost of a few more rows.
+inline constexpr double kLocalMoveFraction = 0.5;
+/// Above this fraction of the particles in its rings, a local refresh gives way to a full update,
+/// which sweeps the rows in order without the rings' bookkeeping.
+inline constexpr double kLocalMaxFraction = 0.5;
+
 class PorePressureModel : public FluidModel {
  public:
   explicit PorePressureModel(const SpParams& params);
@@ -73,6 +82,8 @@ class PorePressureModel : public FluidModel {
   std::size_t cavitated() const { return cavitated_; }
   /// How many times step() recomputed the SP geometry (see SpParams::geometry_refresh).
   std::uint64_t geometry_updates() const { return geometry_updates_; }
+  /// Of those, how many were local (refresh_geometry: only the rows near the moved particles).
+  std::uint64_t local_updates() const { return local_updates_; }
   /// How many times step() recomputed only the boundary, because only a wall had moved.
   std::uint64_t boundary_updates() const { return boundary_updates_; }
 
@@ -112,6 +123,10 @@ class PorePressureModel : public FluidModel {
   /// (always with geometry_refresh 0 or a changed particle or wall count), else a wall end.
   enum class Staleness { fresh, walls, particles };
   Staleness staleness(std::span<const double> position, std::span<const double> walls) const;
+  /// A local refresh of the geometry (refresh_geometry) around the particles that moved more
+  /// than kLocalMoveFraction of the refresh distance; false if it would not pay (then nothing
+  /// changed).
+  bool refresh_locally(std::span<const double> position);
   /// share_ = phi V_i for the current geometry: the area the excess pressure acts on.
   void update_share();
 
@@ -119,6 +134,9 @@ class PorePressureModel : public FluidModel {
   std::vector<double> walls_at_geometry_;  // wall segments of the current geometry [m]
   std::uint64_t geometry_updates_ = 0;
   std::uint64_t boundary_updates_ = 0;  // walls moved, particles not: the boundary alone
+  std::uint64_t local_updates_ = 0;
+  std::vector<int> moved_;  // the particles a local refresh moves
+  LocalRefresh refresh_;
 };
 
 }  // namespace rockcut::fluid::sp

@@ -14,6 +14,22 @@ void StepOperator::build(const Geometry& geo) {
   c_lam_.resize(3 * geo.neighbours.size());
   t_.resize(2 * geo.neighbours.size());
   c_sum_.resize(2 * static_cast<std::size_t>(n));
+  build_rows(AllRows{n}, geo);
+}
+
+bool StepOperator::rebuild_rows(const Geometry& geo, const std::vector<int>& rows) {
+  if (version_ + 1 != geo.version || c_lam_.size() != 3 * geo.neighbours.size() ||
+      c_sum_.size() != 2 * geo.particles()) {
+    build(geo);
+    return false;
+  }
+  build_rows(RowList{rows}, geo);
+  return true;
+}
+
+template <class Rows>
+void StepOperator::build_rows(const Rows& rows, const Geometry& geo) {
+  const int count = rows.size();
   const int* begin = geo.row_begin.data();
   const int* end = geo.row_end.data();
   const int* nb = geo.neighbours.data();
@@ -25,7 +41,8 @@ void StepOperator::build(const Geometry& geo) {
   float* t = t_.data();
   double* cs = c_sum_.data();
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int r = 0; r < count; ++r) {
+    const int i = rows[r];
     const double* mi = inv + 3 * i;
     const double xi = x[2 * i], yi = x[2 * i + 1];
     double sx = 0.0, sy = 0.0;

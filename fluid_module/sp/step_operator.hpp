@@ -40,6 +40,10 @@ class StepOperator {
  public:
   /// Computes the coefficients for `geo`.
   void build(const Geometry& geo);
+  /// After a local refresh of the geometry (refresh_geometry): recomputes the coefficients of
+  /// `rows` (LocalRefresh::coefficient_rows), the only ones that changed. Needs the coefficients of
+  /// the geometry's previous version; otherwise builds them all and returns false.
+  bool rebuild_rows(const Geometry& geo, const std::vector<int>& rows);
 
   /// The geometry version the coefficients belong to (Geometry::version).
   std::uint64_t version() const { return version_; }
@@ -56,6 +60,8 @@ class StepOperator {
                      std::span<double> force) const;
 
  private:
+  template <class Rows>
+  void build_rows(const Rows& rows, const Geometry& geo);
   /// The rows of divergence(), with the Laplacian of `a` in the same pass when kLap.
   template <bool kLap>
   void divergence_rows(const Geometry& geo, std::span<const double> vel, std::span<const double> a,

@@ -11,6 +11,8 @@
 //                      (divergence with the Laplacian, update, adjoint force), on 1 and 2 threads
 //   implicit           backward Euler at 1, 20 and 100 times the explicit limit
 //   neighbour_build    the cell-list rebuild alone;  geometry  the per-step SP geometry alone
+//   geometry_refresh   a geometry update with the step's coefficients, full (patch_mm:0) or local
+//                      around a moved disc of particles (patch_mm:5, 10, 20)
 // each with the particles numbered cell by cell (cell_ordered:1, as the specimen generator numbers
 // them) and in pack57k's own random order (cell_ordered:0).
 //
@@ -30,6 +32,7 @@
 
 #include "sp/explicit_model.hpp"
 #include "sp/implicit_model.hpp"
+#include "sp/step_operator.hpp"
 
 namespace {
 
@@ -194,6 +197,56 @@ void geometry(benchmark::State& state) {
   per_particle(state, p.radius.size());
 }
 
+// A geometry update with the step's coefficients after the particles in a disc of patch_mm
+// around the packing's centre moved (the region around a tool and its chip): the local refresh
+// (sp::refresh_geometry, StepOperator::rebuild_rows); patch_mm 0 is the full update of every row.
+// rows = the fraction of the rows recomputed.
+void geometry_refresh(benchmark::State& state) {
+  const Packing& p = packing(true);
+  const std::size_t n = p.radius.size();
+  sp::NeighbourList list(0.0015, 0.1);
+  list.build(p.position);
+  const std::vector<double> lucy(n, 3e-7);
+  const sp::WendlandC2 kernel(0.0015);
+  sp::Geometry geo;
+  sp::update_geometry(list, kernel, p.position, lucy, 3, geo);
+  sp::StepOperator op;
+  op.build(geo);
+  const double patch_m = 1e-3 * static_cast<double>(state.range(0));
+  double cx = 0.0, cy = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    cx += p.position[2 * i] / static_cast<double>(n);
+    cy += p.position[2 * i + 1] / static_cast<double>(n);
+  }
+  std::vector<int> moved;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::hypot(p.position[2 * i] - cx, p.position[2 * i + 1] - cy) < patch_m) {
+      moved.push_back(static_cast<int>(i));
+    }
+  }
+  // The patch moves 3 um (0.002 h) and back, so the list stays valid.
+  std::vector<double> x = p.position, shifted = p.position;
+  for (int i : moved) shifted[2 * i] += 3e-6;
+  sp::LocalRefresh scratch;
+  omp_set_num_threads(1);
+  bool flip = false;
+  for (auto _ : state) {
+    flip = !flip;
+    const std::vector<double>& now = flip ? shifted : x;
+    if (moved.empty()) {
+      sp::update_geometry(list, kernel, now, lucy, 3, geo);
+      op.build(geo);
+    } else {
+      sp::refresh_geometry(list, kernel, now, moved, lucy, 3, 1.0, scratch, geo);
+      op.rebuild_rows(geo, scratch.coefficient_rows);
+    }
+  }
+  per_particle(state, n);
+  state.counters["moved"] = static_cast<double>(moved.size());
+  state.counters["rows"] =
+      moved.empty() ? 1.0 : static_cast<double>(scratch.coefficient_rows.size()) / n;
+}
+
 BENCHMARK(explicit_static)->Name("explicit/static")->ArgName("cell_ordered")->Arg(1)->Arg(0)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(explicit_moving)->Name("explicit/moving")->ArgName("cell_ordered")->Arg(1)->Arg(0)
@@ -204,6 +257,8 @@ BENCHMARK(implicit_step)->Name("implicit")->ArgNames({"cell_ordered", "dt_x_expl
     ->Args({1, 1})->Args({1, 20})->Args({1, 100})->Args({0, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(neighbour_build)->ArgName("cell_ordered")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 BENCHMARK(geometry)->ArgName("cell_ordered")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+BENCHMARK(geometry_refresh)->ArgName("patch_mm")->Arg(0)->Arg(5)->Arg(10)->Arg(20)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -146,6 +146,7 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     update_share();
     ++geometry_updates_;
     local_updates_ += local;
+    rows_recomputed_ += local ? refresh_.coefficient_rows.size() : n;
   } else if (stale == Staleness::walls) {
     // Only a wall (the tool) has moved: the kernel sums do not see walls, so only the boundary
     // (which particles the walls seal) is recomputed, on the geometry's own positions.
@@ -286,6 +287,7 @@ void PorePressureModel::scalars(std::vector<std::pair<std::string, double>>& out
   out.emplace_back("neighbour_builds", static_cast<double>(list_.builds()));
   out.emplace_back("geometry_updates", static_cast<double>(geometry_updates_));
   out.emplace_back("geometry_local_updates", static_cast<double>(local_updates_));
+  out.emplace_back("geometry_rows_recomputed", static_cast<double>(rows_recomputed_));
   out.emplace_back("boundary_updates", static_cast<double>(boundary_updates_));
   add_scalars(out);
 }

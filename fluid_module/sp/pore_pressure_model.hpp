@@ -135,6 +135,7 @@ class PorePressureModel : public FluidModel {
   std::uint64_t geometry_updates_ = 0;
   std::uint64_t boundary_updates_ = 0;  // walls moved, particles not: the boundary alone
   std::uint64_t local_updates_ = 0;
+  std::uint64_t rows_recomputed_ = 0;  // over all geometry updates (a full one: every row)
   std::vector<int> moved_;  // the particles a local refresh moves
   LocalRefresh refresh_;
 };

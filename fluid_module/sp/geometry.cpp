@@ -215,12 +215,12 @@ bool refresh_geometry(const NeighbourList& list, const WendlandC2& kernel,
   std::size_t from = 0;
   for (unsigned ring = 1; ring <= rings; ++ring) {
     const std::size_t to = s.rows.size();
+    const int* nb = ring == 1 ? list.neighbours().data() : geo.neighbours.data();
+    const int* begin = ring == 1 ? list.offsets().data() : geo.row_begin.data();
+    const int* end = ring == 1 ? list.offsets().data() + 1 : geo.row_end.data();
     for (std::size_t r = from; r < to; ++r) {
       const int i = s.rows[r];
-      const int* nb = ring == 1 ? list.neighbours().data() : geo.neighbours.data();
-      const int b = ring == 1 ? list.offsets()[i] : geo.row_begin[i];
-      const int e = ring == 1 ? list.offsets()[i + 1] : geo.row_end[i];
-      for (int k = b; k < e; ++k) {
+      for (int k = begin[i]; k < end[i]; ++k) {
         const auto j = static_cast<std::size_t>(nb[k]);
         if (s.level[j] != kNone) continue;
         s.level[j] = static_cast<std::uint8_t>(ring);

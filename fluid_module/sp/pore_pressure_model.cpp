@@ -139,21 +139,20 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
     if (!local) {
       update_geometry(list_, kernel_, k.position, lucy_volume_, params_.volume_iterations, geo_);
     }
-    // On the geometry's positions X' (the current ones after a full update).
-    counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
-                                geo_.position, radius_, sides_, boundary_, k.wall_segments);
-    walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
     update_share();
     ++geometry_updates_;
     local_updates_ += local;
     rows_recomputed_ += local ? refresh_.coefficient_rows.size() : n;
   } else if (stale == Staleness::walls) {
     // Only a wall (the tool) has moved: the kernel sums do not see walls, so only the boundary
-    // (which particles the walls seal) is recomputed, on the geometry's own positions.
+    // (which particles the walls seal) is recomputed.
+    ++boundary_updates_;
+  }
+  if (stale != Staleness::fresh) {
+    // On the geometry's positions X' (the current ones after a full update).
     counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
                                 geo_.position, radius_, sides_, boundary_, k.wall_segments);
     walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
-    ++boundary_updates_;
   }
   // The step's coefficients follow the geometry.
   if (step_op_.version() != geo_.version) {

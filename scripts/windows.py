@@ -1,0 +1,171 @@
+#!/usr/bin/python3
+"""Means of a cutting run's time series over windows of tool travel.
+
+  scripts/windows OUT [--every-mm 10] [--from-mm 0] [--csv FILE]
+
+OUT is a run's output folder (`coupler run ... --out OUT`), or its run.h5. A paper-scale cut takes
+hours, and one stopped early (Ctrl-C) or cut short (`--set time.end_time_s=...`) may not reach the
+steady part from which summary.json takes its means. The window means show how far the force has
+settled. For each window [a, a + every) of `tool_travel_m`, from --from-mm to the last sample, this
+prints one row:
+
+  travel [mm]              the window; the last one ends at the last sample (a remainder under
+                           1 % of a window joins the window before it)
+  samples                  time-series samples in it
+  Fh, Fv [kN/m]            mean horizontal force resisting the cut (-tool_force_x) and vertical
+                           force on the tool (up > 0): the signs of summary.json
+  P1, P2, P3 [MPa]         coupled runs: mean p - p_hydro of each pressure node, over the samples
+                           in which the node held a particle centre (as summary.json); '-' if none
+  tensile, shear, shear %  bond breaks by mode at the window's last sample
+  chips, chip mm^2         chips and their mean area at the window's last sample
+  cavitated                coupled runs: particles at the cavitation limit at the last sample
+
+The means are those of summary.json taken over a window instead of the steady part: with
+--from-mm at `steady_after_m` and --every-mm past the end, the one window gives summary.json's
+force_*_mean_n_per_m and pressure_*_mean_pa (tests/scripts/windows_test.py).
+
+  --every-mm W   window width in mm of tool travel (default 10)
+  --from-mm A    first window's start in mm (default 0: the tool at the block)
+  --csv FILE     also write the rows as CSV (SI units, one column per value)
+
+Exit status: 0 on success, 2 on bad arguments or a file without a cutting time series.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+NODES = ("p1", "p2", "p3")
+
+
+def fail(message):
+    print(f"windows: {message}", file=sys.stderr)
+    raise SystemExit(2)
+
+
+def read_series(path):
+    try:
+        import h5py  # Debian's python3-h5py
+    except ImportError:
+        fail("needs Debian's python3-h5py (apt-get install python3-h5py); run it with /usr/bin/python3")
+    if os.path.isdir(path):
+        path = os.path.join(path, "run.h5")
+    if not os.path.isfile(path):
+        fail(f"{path}: no such file (give a run's --out folder or its run.h5)")
+    try:
+        with h5py.File(path, "r") as f:
+            if "timeseries" not in f:
+                fail(f"{path}: no group 'timeseries' (output.timeseries_every_steps 0?)")
+            series = {name: f["timeseries"][name][()] for name in f["timeseries"]}
+    except OSError as e:
+        fail(f"{path}: cannot read: {e}")
+    for key in ("tool_travel_m", "tool_force_x_n_per_m", "tool_force_y_n_per_m"):
+        if key not in series:
+            fail(f"{path}: time series has no '{key}': not a cutting run (a scene with dem.tool)")
+    if len(series["tool_travel_m"]) == 0:
+        fail(f"{path}: the time series is empty")
+    return path, series
+
+
+def mean(values):
+    return float(values.mean()) if values.size else math.nan
+
+
+def windows(series, every_m, from_m):
+    """Rows of window means: dicts of SI values, as documented above."""
+    import numpy as np  # Debian's python3-numpy, which h5py needs anyway
+    travel = np.asarray(series["tool_travel_m"], dtype=float)
+    last = float(travel.max())
+    rows = []
+    start = from_m
+    while start <= last:
+        end = start + every_m
+        # The last window ends at the last sample; a remainder under 1 % of a window (a sample a
+        # rounding past a window's end) joins the window before it.
+        is_last = last < end + 0.01 * every_m
+        mask = (travel >= start) & (True if is_last else travel < end)
+        picked = np.flatnonzero(mask)
+        if picked.size:
+            at_end = picked[-1]
+            row = {
+                "from_m": start, "to_m": last if is_last else end, "samples": int(picked.size),
+                "fh_n_per_m": mean(-np.asarray(series["tool_force_x_n_per_m"], float)[picked]),
+                "fv_n_per_m": mean(np.asarray(series["tool_force_y_n_per_m"], float)[picked]),
+            }
+            for node in NODES:
+                p_key = f"fluid_probe_{node}_pa"
+                n_key = f"fluid_probe_{node}_particles"
+                if p_key in series and n_key in series:
+                    held = picked[np.asarray(series[n_key])[picked] >= 1]
+                    row[f"{node}_pa"] = mean(np.asarray(series[p_key], float)[held])
+            for key in ("breaks_tensile", "breaks_shear", "chips", "chip_area_mean_m2",
+                        "fluid_cavitated_particles"):
+                if key in series:
+                    row[key] = float(series[key][at_end])
+            rows.append(row)
+        if is_last:
+            break
+        start = end
+    return rows
+
+
+def fmt(value, scale, digits):
+    return "-" if value is None or math.isnan(value) else f"{value * scale:.{digits}f}"
+
+
+def print_table(rows):
+    coupled = any("p1_pa" in r for r in rows)
+    head = ["travel [mm]", "samples", "Fh [kN/m]", "Fv [kN/m]"]
+    if coupled:
+        head += ["P1 [MPa]", "P2 [MPa]", "P3 [MPa]"]
+    head += ["tensile", "shear", "shear %", "chips", "chip [mm^2]"]
+    if coupled:
+        head += ["cavitated"]
+    print("| " + " | ".join(head) + " |")
+    print("|" + "|".join("---" if k == 0 else "---:" for k in range(len(head))) + "|")
+    for r in rows:
+        tensile, shear = r.get("breaks_tensile"), r.get("breaks_shear")
+        fraction = (shear / (tensile + shear) if tensile is not None and shear is not None
+                    and tensile + shear > 0 else None)
+        cells = [f"{r['from_m'] * 1e3:.1f}-{r['to_m'] * 1e3:.1f}", str(r["samples"]),
+                 fmt(r["fh_n_per_m"], 1e-3, 1), fmt(r["fv_n_per_m"], 1e-3, 1)]
+        if coupled:
+            cells += [fmt(r.get(f"{n}_pa"), 1e-6, 2) for n in NODES]
+        cells += [fmt(tensile, 1, 0), fmt(shear, 1, 0), fmt(fraction, 100, 0),
+                  fmt(r.get("chips"), 1, 0), fmt(r.get("chip_area_mean_m2"), 1e6, 2)]
+        if coupled:
+            cells += [fmt(r.get("fluid_cavitated_particles"), 1, 0)]
+        print("| " + " | ".join(cells) + " |")
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(prog="windows", description=__doc__.split("\n")[0])
+    ap.add_argument("out", help="a run's output folder, or its run.h5")
+    ap.add_argument("--every-mm", type=float, default=10.0)
+    ap.add_argument("--from-mm", type=float, default=0.0)
+    ap.add_argument("--csv", help="also write the rows to this CSV file (SI units)")
+    args = ap.parse_args(argv)
+    if not (args.every_mm > 0) or not math.isfinite(args.every_mm):
+        fail(f"--every-mm {args.every_mm}: must be a window width > 0 mm")
+    if not math.isfinite(args.from_mm):
+        fail(f"--from-mm {args.from_mm}: must be a number of mm")
+    path, series = read_series(args.out)
+    rows = windows(series, args.every_mm * 1e-3, args.from_mm * 1e-3)
+    if not rows:
+        fail(f"{path}: no sample at or beyond {args.from_mm} mm of travel "
+             f"(the run reached {float(max(series['tool_travel_m'])) * 1e3:.2f} mm)")
+    print(f"{path}: {len(series['tool_travel_m'])} samples, tool travel up to "
+          f"{float(max(series['tool_travel_m'])) * 1e3:.2f} mm")
+    print_table(rows)
+    if args.csv:
+        keys = sorted({k for r in rows for k in r})
+        with open(args.csv, "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=keys)
+            writer.writeheader()
+            writer.writerows(rows)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""scripts/windows run as a user would, on a 6 mm saturated reduced cut (about 5 s): its window
+means against the coupler's own summary.json (computed in C++ from the same samples, so an
+independent check of the selection, the signs and the node filter), windows that tile the cut,
+and bad input.
+
+  tests/scripts/windows_test.py --coupler build/bin/coupler --tmp DIR
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+WINDOWS = os.path.join(ROOT, "scripts", "windows")
+CASE = os.path.join(ROOT, "cases", "cutting", "saturated_reduced.pbtxt")
+ARGS = None
+# Both sides sum the same doubles in the same order and divide once, so they agree to the last
+# bits; 1e-12 leaves room for a different order of the additions (~1e-16 per addition over a few
+# hundred samples) and still fails for a wrong sign, a missed or extra sample (>= 1e-3 here).
+REL = 1e-12
+
+
+def read_csv(path):
+    with open(path) as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def windows(*args):
+    return subprocess.run([WINDOWS, *args], capture_output=True, text=True, timeout=60)
+
+
+class WindowsOfACut(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.out = os.path.join(ARGS.tmp, "windows_cut")
+        shutil.rmtree(cls.out, ignore_errors=True)
+        run = subprocess.run(
+            [ARGS.coupler, "run", CASE, "--out", cls.out, "--transport", "inproc",
+             "--set", "time.end_time_s=0.007", "--set", "dem.tool.steady_after_m=0.003",
+             "--set", "output.frame_interval_s=0", "--set", "output.timeseries_every_steps=30"],
+            capture_output=True, text=True, timeout=240)
+        if run.returncode != 0:
+            raise RuntimeError(run.stdout + run.stderr)
+        with open(os.path.join(cls.out, "summary.json")) as f:
+            cls.summary = json.load(f)
+
+    def assert_close(self, got, want, what):
+        self.assertLessEqual(abs(got - want), REL * abs(want), f"{what}: {got} against {want}")
+
+    def test_one_window_from_the_steady_start_is_the_summary(self):
+        path = os.path.join(self.out, "steady.csv")
+        r = windows(self.out, "--from-mm", "3", "--every-mm", "1000", "--csv", path)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("| 3.0-", r.stdout)
+        rows = read_csv(path)
+        self.assertEqual(len(rows), 1)
+        row, s = rows[0], self.summary
+        self.assertEqual(row["samples"], s["steady_samples"])
+        self.assertGreater(row["samples"], 50)
+        self.assert_close(row["fh_n_per_m"], s["force_horizontal_mean_n_per_m"], "Fh")
+        self.assert_close(row["fv_n_per_m"], s["force_vertical_mean_n_per_m"], "Fv")
+        for node in ("p1", "p2", "p3"):
+            if s[f"pressure_{node}_samples"] == 0:
+                self.assertTrue(math.isnan(row[f"{node}_pa"]), node)
+            else:
+                self.assert_close(row[f"{node}_pa"], s[f"pressure_{node}_mean_pa"], node)
+        for key in ("breaks_tensile", "breaks_shear", "chips"):
+            self.assertEqual(row[key], s[key], key)
+
+    def test_one_mm_windows_tile_the_cut(self):
+        path = os.path.join(self.out, "mm.csv")
+        r = windows(self.out, "--every-mm", "1", "--csv", path)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = read_csv(path)
+        # 6 mm of cut: [0, 1), ..., [5, end]; the last sample lies a rounding past 6 mm and
+        # joins the last window instead of making one of its own.
+        self.assertEqual([round(w["from_m"] * 1e3, 9) for w in rows], [0, 1, 2, 3, 4, 5])
+        self.assertAlmostEqual(rows[-1]["to_m"], 0.006, delta=1e-5)
+        for a, b in zip(rows, rows[1:]):
+            self.assertEqual(a["to_m"], b["from_m"])
+            self.assertLessEqual(a["breaks_tensile"] + a["breaks_shear"],
+                                 b["breaks_tensile"] + b["breaks_shear"])
+        # The windows from 3 mm, weighted by their samples, make the steady mean again.
+        steady = [w for w in rows if w["from_m"] >= 0.003 - 1e-12]
+        samples = sum(w["samples"] for w in steady)
+        self.assertEqual(samples, self.summary["steady_samples"])
+        fh = sum(w["fh_n_per_m"] * w["samples"] for w in steady) / samples
+        self.assertLess(abs(fh - self.summary["force_horizontal_mean_n_per_m"]),
+                        1e-9 * abs(self.summary["force_horizontal_mean_n_per_m"]))
+
+    def test_bad_input_is_refused_with_the_reason(self):
+        missing = os.path.join(self.out, "no_such_run")
+        r = windows(missing)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no_such_run", r.stderr)
+        r = windows(self.out, "--every-mm", "0")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--every-mm", r.stderr)
+        r = windows(self.out, "--from-mm", "50")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("reached", r.stderr)
+
+
+if __name__ == "__main__":
+    p = argparse.ArgumentParser()
+    p.add_argument("--coupler", required=True)
+    p.add_argument("--tmp", required=True)
+    ARGS, rest = p.parse_known_args()
+    os.makedirs(ARGS.tmp, exist_ok=True)
+    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)

@@ -3,9 +3,9 @@
 
   scripts/windows OUT [--every-mm 10] [--from-mm 0] [--csv FILE]
 
-OUT is a run's output folder (`coupler run ... --out OUT`), or its run.h5. A paper-scale cut takes
-hours, and one stopped early (Ctrl-C) or cut short (`--set time.end_time_s=...`) may not reach the
-steady part from which summary.json takes its means. The window means show how far the force has
+OUT is a run's output folder (`coupler run ... --out OUT`), or its run.h5, also of a run still
+going. A paper-scale cut takes hours, and one stopped early (Ctrl-C) or cut short
+(`--set time.end_time_s=...`) may not reach the steady part from which summary.json takes its means. The window means show how far the force has
 settled. For each window [a, a + every) of `tool_travel_m`, from --from-mm to the last sample, this
 prints one row:
 
@@ -36,6 +36,9 @@ import math
 import os
 import sys
 
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
 NODES = ("p1", "p2", "p3")
 
 
@@ -45,21 +48,25 @@ def fail(message):
 
 
 def read_series(path):
+    """The time series of run.h5 as float arrays of one length (plot_cutting.read_timeseries,
+    which also reads a file the run is still writing)."""
     try:
         import h5py  # Debian's python3-h5py
-    except ImportError:
-        fail("needs Debian's python3-h5py (apt-get install python3-h5py); run it with /usr/bin/python3")
+        import plot_cutting  # sets HDF5_USE_FILE_LOCKING before h5py opens a file
+    except ImportError as e:
+        fail(f"needs Debian's python3-h5py, -numpy and -matplotlib ({e}); "
+             "run it with /usr/bin/python3")
     if os.path.isdir(path):
         path = os.path.join(path, "run.h5")
     if not os.path.isfile(path):
         fail(f"{path}: no such file (give a run's --out folder or its run.h5)")
     try:
         with h5py.File(path, "r") as f:
-            if "timeseries" not in f:
-                fail(f"{path}: no group 'timeseries' (output.timeseries_every_steps 0?)")
-            series = {name: f["timeseries"][name][()] for name in f["timeseries"]}
+            series = plot_cutting.read_timeseries(f)
     except OSError as e:
         fail(f"{path}: cannot read: {e}")
+    if not series:
+        fail(f"{path}: no time series (output.timeseries_every_steps 0?)")
     for key in ("tool_travel_m", "tool_force_x_n_per_m", "tool_force_y_n_per_m"):
         if key not in series:
             fail(f"{path}: time series has no '{key}': not a cutting run (a scene with dem.tool)")
@@ -74,8 +81,7 @@ def mean(values):
 
 def windows(series, every_m, from_m):
     """Rows of window means: dicts of SI values, as documented above."""
-    import numpy as np  # Debian's python3-numpy, which h5py needs anyway
-    travel = np.asarray(series["tool_travel_m"], dtype=float)
+    travel = series["tool_travel_m"]
     last = float(travel.max())
     rows = []
     start = from_m
@@ -84,21 +90,19 @@ def windows(series, every_m, from_m):
         # The last window ends at the last sample; a remainder under 1 % of a window (a sample a
         # rounding past a window's end) joins the window before it.
         is_last = last < end + 0.01 * every_m
-        mask = (travel >= start) & (True if is_last else travel < end)
-        picked = np.flatnonzero(mask)
-        if picked.size:
-            at_end = picked[-1]
+        picked = (travel >= start) & (True if is_last else travel < end)
+        if picked.any():
+            at_end = picked.nonzero()[0][-1]
             row = {
-                "from_m": start, "to_m": last if is_last else end, "samples": int(picked.size),
-                "fh_n_per_m": mean(-np.asarray(series["tool_force_x_n_per_m"], float)[picked]),
-                "fv_n_per_m": mean(np.asarray(series["tool_force_y_n_per_m"], float)[picked]),
+                "from_m": start, "to_m": last if is_last else end, "samples": int(picked.sum()),
+                "fh_n_per_m": mean(-series["tool_force_x_n_per_m"][picked]),
+                "fv_n_per_m": mean(series["tool_force_y_n_per_m"][picked]),
             }
             for node in NODES:
                 p_key = f"fluid_probe_{node}_pa"
                 n_key = f"fluid_probe_{node}_particles"
                 if p_key in series and n_key in series:
-                    held = picked[np.asarray(series[n_key])[picked] >= 1]
-                    row[f"{node}_pa"] = mean(np.asarray(series[p_key], float)[held])
+                    row[f"{node}_pa"] = mean(series[p_key][picked & (series[n_key] >= 1)])
             for key in ("breaks_tensile", "breaks_shear", "chips", "chip_area_mean_m2",
                         "fluid_cavitated_particles"):
                 if key in series:
@@ -152,11 +156,11 @@ def main(argv):
         fail(f"--from-mm {args.from_mm}: must be a number of mm")
     path, series = read_series(args.out)
     rows = windows(series, args.every_mm * 1e-3, args.from_mm * 1e-3)
+    reached_mm = float(series["tool_travel_m"].max()) * 1e3
     if not rows:
         fail(f"{path}: no sample at or beyond {args.from_mm} mm of travel "
-             f"(the run reached {float(max(series['tool_travel_m'])) * 1e3:.2f} mm)")
-    print(f"{path}: {len(series['tool_travel_m'])} samples, tool travel up to "
-          f"{float(max(series['tool_travel_m'])) * 1e3:.2f} mm")
+             f"(the run reached {reached_mm:.2f} mm)")
+    print(f"{path}: {len(series['tool_travel_m'])} samples, tool travel up to {reached_mm:.2f} mm")
     print_table(rows)
     if args.csv:
         keys = sorted({k for r in rows for k in r})

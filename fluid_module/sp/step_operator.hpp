@@ -19,9 +19,11 @@
 // the sums, as with the operators.
 //
 // The coefficients are stored as floats (widened to doubles in the passes, which sum in double):
-// at paper scale the passes are bound mostly by streaming them (58,000 particles: 1.3 million
-// pairs), and floats take the step from 48 to 28 bytes per pair (1.3 times faster; bench/README.md,
-// session 16). The rounding moves each coefficient by at most 2^-24 = 6e-8 of itself; the
+// at paper scale the passes stream them for 1.3 million pairs (58,000 particles), and floats, each
+// pair widened by one cvtps2pd, take the step from 48 to 28 bytes per pair (1.3 times faster;
+// bench/README.md, session 16). Fewer bytes no longer pay: 16-bit coefficients (14 bytes) made the
+// passes 1.3-1.5 times slower, their widening costing more instructions than the bytes they saved
+// (bench/README.md, session 18). The rounding moves each coefficient by at most 2^-24 = 6e-8 of itself; the
 // geometry they come from is itself reused until a particle has moved 0.002 h, an operator error
 // of ~1e-3 (docs/fluid_model.md, "Reusing the geometry").
 //

@@ -9,6 +9,7 @@
 //   explicit/reused    particles at rest with the scene default fluid.geometry_refresh_distance
 //                      (0.002 h): the geometry is computed once, so this is the step alone
 //                      (divergence with the Laplacian, update, adjoint force), on 1 and 2 threads
+//   step_passes        the two passes over the pairs of that step alone, on 1 and 2 threads
 //   implicit           backward Euler at 1, 20 and 100 times the explicit limit
 //   neighbour_build    the cell-list rebuild alone;  geometry  the per-step SP geometry alone
 //   geometry_refresh   a geometry update with the step's coefficients, full (patch_mm:0) or local
@@ -247,12 +248,41 @@ void geometry_refresh(benchmark::State& state) {
       moved.empty() ? 1.0 : static_cast<double>(scratch.coefficient_rows.size()) / n;
 }
 
+// The explicit step's two passes over the pairs alone (StepOperator::divergence_laplacian and
+// adjoint_force), fixed inputs, on 1 or 2 threads: what explicit/reused spends outside the update.
+void step_passes(benchmark::State& state) {
+  const Packing& p = packing(true);
+  const std::size_t n = p.radius.size();
+  sp::NeighbourList list(0.0015, 0.1);
+  list.build(p.position);
+  const std::vector<double> lucy(n, 3e-7);
+  const sp::WendlandC2 kernel(0.0015);
+  sp::Geometry geo;
+  sp::update_geometry(list, kernel, p.position, lucy, 3, geo);
+  sp::StepOperator op;
+  op.build(geo);
+  std::vector<double> vel(2 * n), a(n), div(n), lap(n), force(2 * n);
+  std::mt19937_64 rng(3);
+  for (double& v : vel) v = static_cast<double>(rng() >> 11) * 0x1.0p-53 - 0.5;
+  for (double& v : a) v = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    op.divergence_laplacian(geo, vel, a, div, lap);
+    op.adjoint_force(geo, a, force);
+    benchmark::DoNotOptimize(force.data());
+  }
+  omp_set_num_threads(1);
+  per_particle(state, n);
+}
+
 BENCHMARK(explicit_static)->Name("explicit/static")->ArgName("cell_ordered")->Arg(1)->Arg(0)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(explicit_moving)->Name("explicit/moving")->ArgName("cell_ordered")->Arg(1)->Arg(0)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(explicit_reused)->Name("explicit/reused")->ArgNames({"cell_ordered", "threads"})
     ->Args({1, 1})->Args({1, 2})->Unit(benchmark::kMillisecond);
+BENCHMARK(step_passes)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(implicit_step)->Name("implicit")->ArgNames({"cell_ordered", "dt_x_explicit"})
     ->Args({1, 1})->Args({1, 20})->Args({1, 100})->Args({0, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(neighbour_build)->ArgName("cell_ordered")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Means of a cutting run's time series over windows of tool travel.
 
-  scripts/windows OUT [--every-mm 10] [--from-mm 0] [--csv FILE]
+  scripts/windows OUT [OUT ...] [--every-mm 10] [--from-mm 0] [--csv FILE] [--plot PNG]
 
 OUT is a run's output folder (`coupler run ... --out OUT`), or its run.h5, also of a run still
 going. A paper-scale cut takes hours, and one stopped early (Ctrl-C) or cut short
@@ -26,14 +26,25 @@ force_*_mean_n_per_m and pressure_*_mean_pa (tests/scripts/windows_test.py).
 
   --every-mm W   window width in mm of tool travel (default 10)
   --from-mm A    first window's start in mm (default 0: the tool at the block)
-  --csv FILE     also write the rows as CSV (SI units, one column per value)
+  --csv FILE     also write the rows as CSV (SI units, one column per value; `run` names the
+                 run, `water_depth_m` is its scene's depth)
+  --plot PNG     draw the window means of the runs against their hydrostatic pressure
+                 (summary.json's hydrostatic_pressure_pa; a run without summary.json, still
+                 going, is left out with a note), one line per window of full width: Fh, Fv,
+                 the shear fraction, the mean chip area, P1-P3 and the cavitated particles
+
+Several OUTs give one table each, in the order given: runs of one scene at several depths stopped
+at the same travel (paper-scale cuts take hours each) are compared window by window, the way
+docs/results.md compares its paper-scale runs.
 
 Exit status: 0 on success, 2 on bad arguments or a file without a cutting time series.
 """
 import argparse
 import csv
+import json
 import math
 import os
+import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -73,6 +84,29 @@ def read_series(path):
     if len(series["tool_travel_m"]) == 0:
         fail(f"{path}: the time series is empty")
     return path, series
+
+
+def run_facts(path):
+    """(water depth [m] from the scene stored in run.h5, hydrostatic pressure [Pa] from the run's
+    summary.json or NaN while the run has none)."""
+    import h5py
+    depth = 0.0  # the scene field's default
+    with h5py.File(path, "r") as f:
+        scene = f.attrs.get("scene", "")
+    if isinstance(scene, bytes):
+        scene = scene.decode()
+    m = re.search(r"^water_depth_m:\s*([-+0-9.eE]+)", scene, re.M)
+    if m:
+        depth = float(m.group(1))
+    p_hydro = math.nan
+    summary = os.path.join(os.path.dirname(path), "summary.json")
+    if os.path.isfile(summary):
+        try:
+            with open(summary) as f:
+                p_hydro = float(json.load(f).get("hydrostatic_pressure_pa", math.nan))
+        except (OSError, ValueError):
+            pass
+    return depth, p_hydro
 
 
 def mean(values):
@@ -143,31 +177,107 @@ def print_table(rows):
         print("| " + " | ".join(cells) + " |")
 
 
+def plot(runs, every_m, png):
+    """runs: (label, depth, p_hydro, rows). One line per window start, over the runs that have a
+    full window there."""
+    import plot_cutting  # noqa: F401  (the Agg backend)
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+    usable = [r for r in runs if math.isfinite(r[2])]
+    for label, _, _, _ in runs:
+        if all(label != u[0] for u in usable):
+            print(f"note: {label}: no summary.json (still going?), left out of the plot",
+                  file=sys.stderr)
+    if not usable:
+        fail("--plot: no run has a summary.json with its hydrostatic pressure")
+    coupled = any("p1_pa" in row for r in usable for row in r[3])
+    panels = [("Fh [kN/m]", lambda w: w["fh_n_per_m"] * 1e-3),
+              ("Fv, up > 0 [kN/m]", lambda w: w["fv_n_per_m"] * 1e-3),
+              ("shear breaks / all breaks", shear_fraction),
+              ("mean chip area [mm$^2$]", lambda w: w.get("chip_area_mean_m2", math.nan) * 1e6)]
+    if coupled:
+        panels += [(f"{n.upper()}: p - p_hydro [MPa]",
+                    lambda w, n=n: w.get(f"{n}_pa", math.nan) * 1e-6) for n in NODES]
+        panels += [("cavitated particles", lambda w: w.get("fluid_cavitated_particles", math.nan))]
+    cols = 4 if len(panels) > 4 else len(panels)
+    nrows = (len(panels) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.0 * cols, 3.2 * nrows), dpi=100,
+                             squeeze=False)
+    starts = sorted({round(w["from_m"], 9) for r in usable for w in r[3]
+                     if w["to_m"] - w["from_m"] >= 0.99 * every_m})
+    for ax, (title, value) in zip(axes.flat, panels):
+        for start in starts:
+            xs, ys = [], []
+            for _, _, p_hydro, rows in sorted(usable, key=lambda r: r[2]):
+                for w in rows:
+                    if round(w["from_m"], 9) == start and w["to_m"] - w["from_m"] >= 0.99 * every_m:
+                        xs.append(p_hydro * 1e-6)
+                        ys.append(value(w))
+            ax.plot(xs, ys, "o-", label=f"{start * 1e3:.0f}-{(start + every_m) * 1e3:.0f} mm")
+        ax.set_xscale("log")
+        ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.set_xlabel("hydrostatic pressure [MPa]")
+        ax.set_title(title, fontsize=10)
+        if title.startswith("P"):
+            ax.axhline(0.0, color="0.6", lw=0.8)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.set_visible(False)
+    axes.flat[0].legend(title="tool travel", fontsize=8)
+    names = ", ".join(f"{d:g} m" for _, d, _, _ in sorted(usable, key=lambda r: r[2]))
+    fig.suptitle(f"window means of {len(usable)} runs ({names})", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    plt.close(fig)
+
+
+def shear_fraction(w):
+    tensile, shear = w.get("breaks_tensile"), w.get("breaks_shear")
+    if tensile is None or shear is None or tensile + shear <= 0:
+        return math.nan
+    return shear / (tensile + shear)
+
+
 def main(argv):
     ap = argparse.ArgumentParser(prog="windows", description=__doc__.split("\n")[0])
-    ap.add_argument("out", help="a run's output folder, or its run.h5")
+    ap.add_argument("out", nargs="+", help="a run's output folder, or its run.h5")
     ap.add_argument("--every-mm", type=float, default=10.0)
     ap.add_argument("--from-mm", type=float, default=0.0)
     ap.add_argument("--csv", help="also write the rows to this CSV file (SI units)")
+    ap.add_argument("--plot", help="draw the runs' window means against p_hydro into this PNG")
     args = ap.parse_args(argv)
     if not (args.every_mm > 0) or not math.isfinite(args.every_mm):
         fail(f"--every-mm {args.every_mm}: must be a window width > 0 mm")
     if not math.isfinite(args.from_mm):
         fail(f"--from-mm {args.from_mm}: must be a number of mm")
-    path, series = read_series(args.out)
-    rows = windows(series, args.every_mm * 1e-3, args.from_mm * 1e-3)
-    reached_mm = float(series["tool_travel_m"].max()) * 1e3
-    if not rows:
-        fail(f"{path}: no sample at or beyond {args.from_mm} mm of travel "
-             f"(the run reached {reached_mm:.2f} mm)")
-    print(f"{path}: {len(series['tool_travel_m'])} samples, tool travel up to {reached_mm:.2f} mm")
-    print_table(rows)
+    runs = []
+    for out in args.out:
+        path, series = read_series(out)
+        rows = windows(series, args.every_mm * 1e-3, args.from_mm * 1e-3)
+        reached_mm = float(series["tool_travel_m"].max()) * 1e3
+        if not rows:
+            fail(f"{path}: no sample at or beyond {args.from_mm} mm of travel "
+                 f"(the run reached {reached_mm:.2f} mm)")
+        depth, p_hydro = run_facts(path)
+        runs.append((path, depth, p_hydro, rows))
+        if len(runs) > 1:
+            print()
+        print(f"{path}: {len(series['tool_travel_m'])} samples, tool travel up to "
+              f"{reached_mm:.2f} mm, water depth {depth:g} m")
+        print_table(rows)
     if args.csv:
-        keys = sorted({k for r in rows for k in r})
+        table = [{"run": path, "water_depth_m": depth, **row} for path, depth, _, rows in runs
+                 for row in rows]
+        keys = ["run", "water_depth_m"] + sorted({k for r in table for k in r} -
+                                                 {"run", "water_depth_m"})
         with open(args.csv, "w", newline="") as f:
             writer = csv.DictWriter(f, fieldnames=keys)
             writer.writeheader()
-            writer.writerows(rows)
+            writer.writerows(table)
+    if args.plot:
+        plot(runs, args.every_mm * 1e-3, args.plot)
+        print(f"plot: {args.plot}")
     return 0
 
 

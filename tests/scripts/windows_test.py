@@ -27,8 +27,10 @@ REL = 1e-12
 
 
 def read_csv(path):
+    """The rows with every value but the run's name as a float."""
     with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        return [{k: (v if k == "run" else float(v)) for k, v in row.items()}
+                for row in csv.DictReader(f)]
 
 
 def windows(*args):
@@ -93,6 +95,42 @@ class WindowsOfACut(unittest.TestCase):
         fh = sum(w["fh_n_per_m"] * w["samples"] for w in steady) / samples
         self.assertLess(abs(fh - self.summary["force_horizontal_mean_n_per_m"]),
                         1e-9 * abs(self.summary["force_horizontal_mean_n_per_m"]))
+
+    def test_several_runs_are_tabled_and_plotted_against_depth(self):
+        # The same run twice, and its run.h5 alone (as while a run is still going): three tables,
+        # CSV rows whose values repeat exactly, and a plot that leaves out the run without a
+        # summary.json and says so.
+        going = os.path.join(self.out, "going")
+        os.makedirs(going, exist_ok=True)
+        shutil.copy(os.path.join(self.out, "run.h5"), going)
+        path = os.path.join(self.out, "several.csv")
+        png = os.path.join(self.out, "several.png")
+        if os.path.exists(png):
+            os.remove(png)
+        r = windows(self.out, self.out, going, "--every-mm", "2", "--csv", path, "--plot", png)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.count("water depth 0 m"), 3, r.stdout)
+        self.assertIn("going/run.h5: no summary.json", r.stderr)
+        rows = read_csv(path)
+        self.assertEqual(len(rows) % 3, 0)
+        per_run = len(rows) // 3
+        self.assertGreaterEqual(per_run, 3)  # 7 mm of travel in 2 mm windows
+        for a, b, c in zip(rows[:per_run], rows[per_run:2 * per_run], rows[2 * per_run:]):
+            for key in a:
+                if key != "run":
+                    self.assertEqual(repr(a[key]), repr(b[key]), key)
+                    self.assertEqual(repr(a[key]), repr(c[key]), key)
+            self.assertEqual(a["water_depth_m"], 0.0)
+        self.assertTrue(rows[-1]["run"].endswith(os.path.join("going", "run.h5")))
+        with open(png, "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        self.assertGreater(os.path.getsize(png), 10000)
+        # Nothing to plot: refused with the reason, and no PNG written.
+        os.remove(png)
+        r = windows(going, "--plot", png)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("summary.json", r.stderr)
+        self.assertFalse(os.path.exists(png))
 
     def test_bad_input_is_refused_with_the_reason(self):
         missing = os.path.join(self.out, "no_such_run")

@@ -164,8 +164,7 @@ def print_table(rows):
     print("|" + "|".join("---" if k == 0 else "---:" for k in range(len(head))) + "|")
     for r in rows:
         tensile, shear = r.get("breaks_tensile"), r.get("breaks_shear")
-        fraction = (shear / (tensile + shear) if tensile is not None and shear is not None
-                    and tensile + shear > 0 else None)
+        fraction = shear_fraction(r)
         cells = [f"{r['from_m'] * 1e3:.1f}-{r['to_m'] * 1e3:.1f}", str(r["samples"]),
                  fmt(r["fh_n_per_m"], 1e-3, 1), fmt(r["fv_n_per_m"], 1e-3, 1)]
         if coupled:
@@ -251,6 +250,10 @@ def main(argv):
         fail(f"--every-mm {args.every_mm}: must be a window width > 0 mm")
     if not math.isfinite(args.from_mm):
         fail(f"--from-mm {args.from_mm}: must be a number of mm")
+    for option, target in (("--csv", args.csv), ("--plot", args.plot)):
+        folder = os.path.dirname(os.path.abspath(target)) if target else None
+        if folder and not os.path.isdir(folder):
+            fail(f"{option} {target}: no folder {folder} to write it in")
     runs = []
     for out in args.out:
         path, series = read_series(out)

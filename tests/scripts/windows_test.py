@@ -143,6 +143,10 @@ class WindowsOfACut(unittest.TestCase):
         r = windows(self.out, "--from-mm", "50")
         self.assertEqual(r.returncode, 2)
         self.assertIn("reached", r.stderr)
+        r = windows(self.out, "--plot", os.path.join(missing, "depth.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--plot", r.stderr)
+        self.assertFalse(os.path.exists(missing))
 
 
 if __name__ == "__main__":

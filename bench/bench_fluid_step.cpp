@@ -198,21 +198,31 @@ void geometry(benchmark::State& state) {
   per_particle(state, p.radius.size());
 }
 
+// The cell-ordered packing with its neighbour lists, geometry (h = 1.5 mm, Lucy length 3e-7 m)
+// and the step's coefficients: what the benchmarks of StepOperator start from.
+struct OperatorSetup {
+  const Packing& p = packing(true);
+  const std::size_t n = p.radius.size();
+  sp::NeighbourList list{0.0015, 0.1};
+  const std::vector<double> lucy = std::vector<double>(n, 3e-7);
+  const sp::WendlandC2 kernel{0.0015};
+  sp::Geometry geo;
+  sp::StepOperator op;
+
+  OperatorSetup() {
+    list.build(p.position);
+    sp::update_geometry(list, kernel, p.position, lucy, 3, geo);
+    op.build(geo);
+  }
+};
+
 // A geometry update with the step's coefficients after the particles in a disc of patch_mm
 // around the packing's centre moved (the region around a tool and its chip): the local refresh
 // (sp::refresh_geometry, StepOperator::rebuild_rows); patch_mm 0 is the full update of every row.
 // rows = the fraction of the rows recomputed.
 void geometry_refresh(benchmark::State& state) {
-  const Packing& p = packing(true);
-  const std::size_t n = p.radius.size();
-  sp::NeighbourList list(0.0015, 0.1);
-  list.build(p.position);
-  const std::vector<double> lucy(n, 3e-7);
-  const sp::WendlandC2 kernel(0.0015);
-  sp::Geometry geo;
-  sp::update_geometry(list, kernel, p.position, lucy, 3, geo);
-  sp::StepOperator op;
-  op.build(geo);
+  OperatorSetup setup;
+  auto& [p, n, list, lucy, kernel, geo, op] = setup;
   const double patch_m = 1e-3 * static_cast<double>(state.range(0));
   double cx = 0.0, cy = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -251,16 +261,8 @@ void geometry_refresh(benchmark::State& state) {
 // The explicit step's two passes over the pairs alone (StepOperator::divergence_laplacian and
 // adjoint_force), fixed inputs, on 1 or 2 threads: what explicit/reused spends outside the update.
 void step_passes(benchmark::State& state) {
-  const Packing& p = packing(true);
-  const std::size_t n = p.radius.size();
-  sp::NeighbourList list(0.0015, 0.1);
-  list.build(p.position);
-  const std::vector<double> lucy(n, 3e-7);
-  const sp::WendlandC2 kernel(0.0015);
-  sp::Geometry geo;
-  sp::update_geometry(list, kernel, p.position, lucy, 3, geo);
-  sp::StepOperator op;
-  op.build(geo);
+  OperatorSetup setup;
+  auto& [p, n, list, lucy, kernel, geo, op] = setup;
   std::vector<double> vel(2 * n), a(n), div(n), lap(n), force(2 * n);
   std::mt19937_64 rng(3);
   for (double& v : vel) v = static_cast<double>(rng() >> 11) * 0x1.0p-53 - 0.5;

@@ -182,11 +182,11 @@ def plot(runs, every_m, png):
     import plot_cutting  # noqa: F401  (the Agg backend)
     import matplotlib.pyplot as plt
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
-    usable = [r for r in runs if math.isfinite(r[2])]
-    for label, _, _, _ in runs:
-        if all(label != u[0] for u in usable):
+    for label, _, p_hydro, _ in runs:
+        if not math.isfinite(p_hydro):
             print(f"note: {label}: no summary.json (still going?), left out of the plot",
                   file=sys.stderr)
+    usable = [r for r in runs if math.isfinite(r[2])]
     if not usable:
         fail("--plot: no run has a summary.json with its hydrostatic pressure")
     coupled = any("p1_pa" in row for r in usable for row in r[3])

@@ -42,10 +42,7 @@ void wait_for_frames(const fs::path& out) {
 }
 
 pid_t child_named(pid_t parent, const std::string& name) {
-  for (pid_t kid : wait_for_children(parent, 2, 5000ms)) {
-    if (command_name(kid) == name) return kid;
-  }
-  return -1;
+  return wait_for_child_named(parent, name, 5000ms);
 }
 
 void expect_readable_partial_output(const fs::path& out, const std::string& status) {

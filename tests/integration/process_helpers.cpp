@@ -94,14 +94,15 @@ std::vector<pid_t> children_of(pid_t pid) {
   return kids;
 }
 
-std::vector<pid_t> wait_for_children(pid_t pid, std::size_t n, std::chrono::milliseconds timeout) {
+pid_t wait_for_child_named(pid_t pid, const std::string& name, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < deadline) {
-    auto kids = children_of(pid);
-    if (kids.size() >= n) return kids;
+    for (pid_t kid : children_of(pid)) {
+      if (command_name(kid) == name) return kid;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  return {};
+  return -1;
 }
 
 bool is_gone(pid_t pid) {

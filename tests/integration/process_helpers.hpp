@@ -49,8 +49,9 @@ CouplerRun run_coupler(const std::string& scene, const std::vector<std::string>&
 
 /// Direct children of `pid` (from /proc).
 std::vector<pid_t> children_of(pid_t pid);
-/// Waits until `pid` has at least `n` children; returns them (empty on timeout).
-std::vector<pid_t> wait_for_children(pid_t pid, std::size_t n, std::chrono::milliseconds timeout);
+/// Waits until `pid` has a child whose command name is `name` (one that has exec'ed: between fork
+/// and exec a child still carries its parent's name); returns it, or -1 on timeout.
+pid_t wait_for_child_named(pid_t pid, const std::string& name, std::chrono::milliseconds timeout);
 /// True if no live (non-zombie) process has this pid.
 bool is_gone(pid_t pid);
 /// The command name of `pid` (/proc/pid/comm), or "".

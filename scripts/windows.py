@@ -27,11 +27,14 @@ force_*_mean_n_per_m and pressure_*_mean_pa (tests/scripts/windows_test.py).
   --every-mm W   window width in mm of tool travel (default 10)
   --from-mm A    first window's start in mm (default 0: the tool at the block)
   --csv FILE     also write the rows as CSV (SI units, one column per value; `run` names the
-                 run, `water_depth_m` is its scene's depth)
+                 run, `water_depth_m` and `seed` are its scene's depth and specimen seed)
   --plot PNG     draw the window means of the runs against their hydrostatic pressure
                  (summary.json's hydrostatic_pressure_pa; a run without summary.json, still
                  going, is left out with a note), one line per window of full width: Fh, Fv,
-                 the shear fraction, the mean chip area, P1-P3 and the cavitated particles
+                 the shear fraction, the mean chip area, P1-P3 and the cavitated particles.
+                 Several runs at one depth (other seeds) are drawn as their mean, a bar from
+                 their lowest to their highest value and each run as a faint dot, as
+                 scripts/sweep draws its seeds.
 
 Several OUTs give one table each, in the order given: runs of one scene at several depths stopped
 at the same travel (paper-scale cuts take hours each) are compared window by window, the way
@@ -46,6 +49,7 @@ import math
 import os
 import re
 import sys
+from typing import NamedTuple
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -87,10 +91,11 @@ def read_series(path):
 
 
 def run_facts(path):
-    """(water depth [m] from the scene stored in run.h5, hydrostatic pressure [Pa] from the run's
-    summary.json or NaN while the run has none)."""
+    """(water depth [m] and specimen seed from the scene stored in run.h5, hydrostatic pressure
+    [Pa] from the run's summary.json or NaN while the run has none). The stored scene is the one
+    the run used, with its --set overrides; a field it leaves out has its default."""
     import h5py
-    depth = 0.0  # the scene field's default
+    depth, seed = 0.0, 1  # the scene fields' defaults (docs/scene_reference.md)
     with h5py.File(path, "r") as f:
         scene = f.attrs.get("scene", "")
     if isinstance(scene, bytes):
@@ -98,6 +103,9 @@ def run_facts(path):
     m = re.search(r"^water_depth_m:\s*([-+0-9.eE]+)", scene, re.M)
     if m:
         depth = float(m.group(1))
+    m = re.search(r"^\s*seed:\s*([0-9]+)", scene, re.M)  # dem.specimen.seed, the scene's only seed
+    if m:
+        seed = int(m.group(1))
     p_hydro = math.nan
     summary = os.path.join(os.path.dirname(path), "summary.json")
     if os.path.isfile(summary):
@@ -106,7 +114,7 @@ def run_facts(path):
                 p_hydro = float(json.load(f).get("hydrostatic_pressure_pa", math.nan))
         except (OSError, ValueError):
             pass
-    return depth, p_hydro
+    return depth, seed, p_hydro
 
 
 def mean(values):
@@ -176,20 +184,49 @@ def print_table(rows):
         print("| " + " | ".join(cells) + " |")
 
 
+class Run(NamedTuple):
+    label: str     # the path given
+    depth: float   # water_depth_m [m]
+    seed: int      # dem.specimen.seed
+    p_hydro: float  # [Pa], NaN without summary.json
+    rows: list     # windows()
+
+
+def is_full(w, every_m):
+    return w["to_m"] - w["from_m"] >= 0.99 * every_m
+
+
+def depth_points(runs, every_m, value):
+    """{window start [m]: [(p_hydro [Pa], values of the runs at that pressure)]}, over the runs
+    with a summary.json and the windows of full width; runs at one depth (other seeds) share a
+    point. Values that are NaN (a node that held no particle) are left out."""
+    groups = {}
+    for run in runs:
+        if not math.isfinite(run.p_hydro):
+            continue
+        for w in run.rows:
+            if is_full(w, every_m):
+                v = value(w)
+                if math.isfinite(v):
+                    start = round(w["from_m"], 9)
+                    groups.setdefault(start, {}).setdefault(run.p_hydro, []).append(v)
+    return {start: sorted(by_p.items()) for start, by_p in sorted(groups.items())}
+
+
 def plot(runs, every_m, png):
-    """runs: (label, depth, p_hydro, rows). One line per window start, over the runs that have a
-    full window there."""
+    """One line per window start through the mean over each depth's runs; with several runs at a
+    depth a bar from their lowest to their highest value and each run as a faint dot."""
     import plot_cutting  # noqa: F401  (the Agg backend)
     import matplotlib.pyplot as plt
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
-    for label, _, p_hydro, _ in runs:
-        if not math.isfinite(p_hydro):
-            print(f"note: {label}: no summary.json (still going?), left out of the plot",
+    for run in runs:
+        if not math.isfinite(run.p_hydro):
+            print(f"note: {run.label}: no summary.json (still going?), left out of the plot",
                   file=sys.stderr)
-    usable = [r for r in runs if math.isfinite(r[2])]
+    usable = sorted((r for r in runs if math.isfinite(r.p_hydro)), key=lambda r: r.p_hydro)
     if not usable:
         fail("--plot: no run has a summary.json with its hydrostatic pressure")
-    coupled = any("p1_pa" in row for r in usable for row in r[3])
+    coupled = any("p1_pa" in row for r in usable for row in r.rows)
     panels = [("Fh [kN/m]", lambda w: w["fh_n_per_m"] * 1e-3),
               ("Fv, up > 0 [kN/m]", lambda w: w["fv_n_per_m"] * 1e-3),
               ("shear breaks / all breaks", shear_fraction),
@@ -202,17 +239,18 @@ def plot(runs, every_m, png):
     nrows = (len(panels) + cols - 1) // cols
     fig, axes = plt.subplots(nrows, cols, figsize=(4.0 * cols, 3.2 * nrows), dpi=100,
                              squeeze=False)
-    starts = sorted({round(w["from_m"], 9) for r in usable for w in r[3]
-                     if w["to_m"] - w["from_m"] >= 0.99 * every_m})
     for ax, (title, value) in zip(axes.flat, panels):
-        for start in starts:
-            xs, ys = [], []
-            for _, _, p_hydro, rows in sorted(usable, key=lambda r: r[2]):
-                for w in rows:
-                    if round(w["from_m"], 9) == start and w["to_m"] - w["from_m"] >= 0.99 * every_m:
-                        xs.append(p_hydro * 1e-6)
-                        ys.append(value(w))
-            ax.plot(xs, ys, "o-", label=f"{start * 1e3:.0f}-{(start + every_m) * 1e3:.0f} mm")
+        for k, (start, points) in enumerate(depth_points(usable, every_m, value).items()):
+            colour = f"C{k % 10}"
+            xs = [p * 1e-6 for p, _ in points]
+            means = [sum(v) / len(v) for _, v in points]
+            ax.plot(xs, means, "o-", color=colour,
+                    label=f"{start * 1e3:.0f}-{(start + every_m) * 1e3:.0f} mm")
+            for x, m, (_, v) in zip(xs, means, points):
+                if len(v) > 1:
+                    ax.errorbar([x], [m], yerr=[[m - min(v)], [max(v) - m]], fmt="none",
+                                ecolor=colour, elinewidth=1, capsize=3)
+                    ax.plot([x] * len(v), v, ".", color=colour, alpha=0.3)
         ax.set_xscale("log")
         ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
         ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
@@ -224,8 +262,15 @@ def plot(runs, every_m, png):
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
     axes.flat[0].legend(title="tool travel", fontsize=8)
-    names = ", ".join(f"{d:g} m" for _, d, _, _ in sorted(usable, key=lambda r: r[2]))
-    fig.suptitle(f"window means of {len(usable)} runs ({names})", fontsize=11)
+    seeds = {}
+    for r in usable:
+        seeds.setdefault(r.depth, []).append(r.seed)
+    names = ", ".join(f"{d:g} m" + (f" (seeds {', '.join(map(str, s))})" if len(s) > 1 else "")
+                      for d, s in seeds.items())
+    several = any(len(s) > 1 for s in seeds.values())
+    fig.suptitle(f"window means of {len(usable)} runs ({names})"
+                 + ("\nbars: the range over a depth's runs, dots: each run" if several else ""),
+                 fontsize=11)
     fig.tight_layout()
     fig.savefig(png)
     plt.close(fig)
@@ -262,18 +307,18 @@ def main(argv):
         if not rows:
             fail(f"{path}: no sample at or beyond {args.from_mm} mm of travel "
                  f"(the run reached {reached_mm:.2f} mm)")
-        depth, p_hydro = run_facts(path)
-        runs.append((path, depth, p_hydro, rows))
+        depth, seed, p_hydro = run_facts(path)
+        runs.append(Run(path, depth, seed, p_hydro, rows))
         if len(runs) > 1:
             print()
         print(f"{path}: {len(series['tool_travel_m'])} samples, tool travel up to "
-              f"{reached_mm:.2f} mm, water depth {depth:g} m")
+              f"{reached_mm:.2f} mm, water depth {depth:g} m, seed {seed}")
         print_table(rows)
     if args.csv:
-        table = [{"run": path, "water_depth_m": depth, **row} for path, depth, _, rows in runs
-                 for row in rows]
-        keys = ["run", "water_depth_m"] + sorted({k for r in table for k in r} -
-                                                 {"run", "water_depth_m"})
+        first = ["run", "water_depth_m", "seed"]
+        table = [{"run": r.label, "water_depth_m": r.depth, "seed": r.seed, **row}
+                 for r in runs for row in r.rows]
+        keys = first + sorted({k for r in table for k in r} - set(first))
         with open(args.csv, "w", newline="") as f:
             writer = csv.DictWriter(f, fieldnames=keys)
             writer.writeheader()

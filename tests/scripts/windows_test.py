@@ -132,6 +132,55 @@ class WindowsOfACut(unittest.TestCase):
         self.assertIn("summary.json", r.stderr)
         self.assertFalse(os.path.exists(png))
 
+    def test_runs_at_one_depth_share_a_point_with_their_range(self):
+        # A second "seed" of the cut: a copy whose stored scene says seed 2 and whose horizontal
+        # force is three times the first's. The CSV names each run's seed; the plot's point at
+        # the depth is the mean of the two (2x the first's Fh), its bar their range (1x to 3x).
+        import h5py
+        sys.path.insert(0, os.path.join(ROOT, "scripts"))
+        import windows as windows_module
+        seed2 = os.path.join(self.out, "seed2")
+        os.makedirs(seed2, exist_ok=True)
+        for name in ("run.h5", "summary.json"):
+            shutil.copy(os.path.join(self.out, name), seed2)
+        with h5py.File(os.path.join(seed2, "run.h5"), "r+") as f:
+            scene = f.attrs["scene"]
+            scene = scene.decode() if isinstance(scene, bytes) else scene
+            self.assertIn("    seed: 1\n", scene)
+            f.attrs["scene"] = scene.replace("    seed: 1\n", "    seed: 2\n")
+            f["timeseries/tool_force_x_n_per_m"][...] *= 3.0
+        path = os.path.join(self.out, "seeds.csv")
+        png = os.path.join(self.out, "seeds.png")
+        r = windows(self.out, seed2, "--every-mm", "2", "--csv", path, "--plot", png)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("water depth 0 m, seed 1", r.stdout)
+        self.assertIn("water depth 0 m, seed 2", r.stdout)
+        rows = read_csv(path)
+        per_run = len(rows) // 2
+        self.assertEqual([r["seed"] for r in rows], [1.0] * per_run + [2.0] * per_run)
+        for a, b in zip(rows[:per_run], rows[per_run:]):
+            self.assert_close(b["fh_n_per_m"], 3.0 * a["fh_n_per_m"], "Fh of the copy")
+        with open(png, "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        # The plotted points: one pressure per window start, holding both runs' values.
+        runs = []
+        for out in (self.out, seed2):
+            h5, series = windows_module.read_series(out)
+            runs.append(windows_module.Run(h5, *windows_module.run_facts(h5),
+                                           windows_module.windows(series, 0.002, 0.0)))
+        fh = lambda w: w["fh_n_per_m"]  # noqa: E731
+        points = windows_module.depth_points(runs, 0.002, fh)
+        full = [w for w in rows[:per_run] if w["to_m"] - w["from_m"] >= 0.99 * 0.002]
+        self.assertEqual(len(points), len(full))  # the short last window is not drawn
+        for w, (start, at) in zip(full, points.items()):
+            self.assertAlmostEqual(start, w["from_m"], delta=1e-12)
+            self.assertEqual(len(at), 1)
+            p_hydro, values = at[0]
+            self.assertEqual(p_hydro, self.summary["hydrostatic_pressure_pa"])
+            self.assertEqual(len(values), 2)
+            self.assertAlmostEqual(sum(values) / 2, 2.0 * w["fh_n_per_m"],
+                                   delta=REL * 2.0 * abs(w["fh_n_per_m"]))
+
     def test_bad_input_is_refused_with_the_reason(self):
         missing = os.path.join(self.out, "no_such_run")
         r = windows(missing)

@@ -56,6 +56,14 @@ void FluidService::init(const wire::Message& request, wire::Message& reply) {
     data.position = request.array(wire::field::kPosition, 2);
     particle_count_ = data.position.size() / 2;
   }
+  derive_displacement_ =
+    contains(needs_, wire::field::kDisplacement) && contains(needs_, wire::field::kPosition);
+  if (derive_displacement_) {
+    // Init's positions are the DEM's at the start, which its displacement is taken from too.
+    const std::span<const double> x0 = request.array(wire::field::kPosition, 2);
+    previous_position_.assign(x0.begin(), x0.end());
+    displacement_.assign(x0.size(), 0.0);
+  }
   model_->initialise(data);
   force_.assign(2 * particle_count_, 0.0);
 
@@ -63,7 +71,9 @@ void FluidService::init(const wire::Message& request, wire::Message& reply) {
   r->set_model(model_->name());
   r->set_particle_count(particle_count_);
   r->set_supplies_energy(model_->supplies_energy());
-  for (const auto& f : needs_) r->add_needs(f);
+  for (const auto& f : needs_) {
+    if (!(derive_displacement_ && f == wire::field::kDisplacement)) r->add_needs(f);
+  }
   r->add_provides(std::string(wire::field::kForce));
   for (const auto& f : model_->provides()) r->add_provides(f);
   for (const StabilityLimit& l : model_->limits()) {
@@ -84,7 +94,18 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
   if (contains(needs_, wire::field::kVelocityHalf)) {
     k.velocity_half = request.array(wire::field::kVelocityHalf, 2);
   }
-  if (contains(needs_, wire::field::kDisplacement)) {
+  if (derive_displacement_) {
+    if (k.position.size() != previous_position_.size()) {
+      throw std::invalid_argument("fluid_module: FluidStep has " +
+                                  std::to_string(k.position.size() / 2) + " positions, Init had " +
+                                  std::to_string(previous_position_.size() / 2));
+    }
+    for (std::size_t i = 0; i < displacement_.size(); ++i) {
+      displacement_[i] = k.position[i] - previous_position_[i];
+    }
+    std::copy(k.position.begin(), k.position.end(), previous_position_.begin());
+    k.displacement = displacement_;
+  } else if (contains(needs_, wire::field::kDisplacement)) {
     k.displacement = request.array(wire::field::kDisplacement, 2);
   }
   if (contains(needs_, wire::field::kWallSegments)) {

@@ -5,6 +5,7 @@
 #include "run/signals.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
+#include "wire/shared_payload.hpp"
 
 namespace rockcut::coupler {
 
@@ -141,7 +142,11 @@ void ModuleLink::close() {
     // Already failing: the process is stopped below.
   }
   client_.reset();  // closes the socket (linger 0)
-  if (process_) process_->stop(std::chrono::milliseconds(2000));
+  if (process_) {
+    process_->stop(std::chrono::milliseconds(2000));
+    // A module that was killed could not unlink its shared-memory arrays (wire/shared_payload.hpp).
+    wire::remove_shared_segments_of(process_->pid());
+  }
   // A module thread still blocked in recv is released by the owner's context.shutdown(), after
   // which the destructor joins it.
   if (thread_.joinable() && thread_done_) thread_.join();

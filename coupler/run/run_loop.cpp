@@ -106,6 +106,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
     place_probes(nodes_, tip_x->second, tip_y->second, *fs);
   }
   bytes_exchanged_ += reply_.payload_bytes();
+  bytes_in_shared_memory_ += reply_.shared_payload_bytes();
   fluid_request_.take_arrays(reply_);
   fluid_->link->request(fluid_request_, fluid_reply_);
   fluid_busy_.read(fluid_reply_.envelope);
@@ -113,6 +114,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
     throw GuardStop{fluid_->link->label(), fluid_reply_.envelope.fluid_result().guard()};
   }
   bytes_exchanged_ += fluid_reply_.payload_bytes();
+  bytes_in_shared_memory_ += fluid_reply_.shared_payload_bytes();
   ++exchanges_;
 
   // 3. DEM: total force at x^{n+N}, second half kick. When nothing is recorded at this step, the

@@ -415,6 +415,7 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
   summary_.set("steps", static_cast<std::int64_t>(step_));
   summary_.set("exchanges", static_cast<std::int64_t>(exchanges_));
   summary_.set("bytes_exchanged", static_cast<std::int64_t>(bytes_exchanged_));
+  summary_.set("bytes_in_shared_memory", static_cast<std::int64_t>(bytes_in_shared_memory_));
   summary_.set("wall_time_s", wall);
   summary_.set("particle_steps_per_s",
                wall > 0 ? static_cast<double>(dem_.init.particle_count()) * step_ / wall : 0.0);

@@ -138,6 +138,7 @@ class RunSession {
   std::uint64_t exchanges_ = 0;
   bool forces_held_ = false;  // fluid_reply_ holds forces for the next Advance to apply first
   std::uint64_t bytes_exchanged_ = 0;
+  std::uint64_t bytes_in_shared_memory_ = 0;  // the part of it the modules wrote to shared memory
   std::vector<std::pair<std::string, double>> scalars_;
   std::vector<double> initial_position_, last_position_;
   // Final per-particle fields the verification compares (e.g. the fluid's pressure).

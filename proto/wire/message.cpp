@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "wire/protocol.hpp"
+#include "wire/shared_payload.hpp"
 
 namespace rockcut::wire {
 
@@ -26,6 +27,11 @@ void Message::add_array(std::string_view name, std::span<const double> values,
   header->set_dtype(DTYPE_F64);
   header->set_count(values.size() / components);
   header->set_components(components);
+  if (arena_ && values.size_bytes() >= SharedPayloadArena::kMinBytes) {
+    arena_->write(values, *header);
+    frames_.emplace_back();  // empty: the values are in the arena's segment
+    return;
+  }
   frames_.emplace_back(values.data(), values.size_bytes());
 }
 
@@ -57,6 +63,7 @@ std::span<const double> Message::array(std::string_view name, std::uint32_t comp
     }
     const zmq::message_t& frame = frames_.at(static_cast<std::size_t>(i));
     const std::size_t n = h.count() * h.components();
+    if (!h.shared_segment().empty()) return read_shared(h);
     if (frame.size() != n * sizeof(double)) {
       throw ProtocolError("array '" + std::string(name) + "': frame of " +
                           std::to_string(frame.size()) + " bytes for " + std::to_string(n) +
@@ -81,7 +88,15 @@ void Message::clear() {
 
 std::size_t Message::payload_bytes() const {
   std::size_t bytes = 0;
-  for (const auto& f : frames_) bytes += f.size();
+  for (const ArrayHeader& h : envelope.arrays()) bytes += h.count() * h.components() * sizeof(double);
+  return bytes;
+}
+
+std::size_t Message::shared_payload_bytes() const {
+  std::size_t bytes = 0;
+  for (const ArrayHeader& h : envelope.arrays()) {
+    if (!h.shared_segment().empty()) bytes += h.count() * h.components() * sizeof(double);
+  }
   return bytes;
 }
 

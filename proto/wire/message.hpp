@@ -1,7 +1,9 @@
 // A protocol message: an Envelope (frame 0) plus raw array frames (frames 1..k).
 //
 // Arrays are copied once into ZeroMQ frames and read in place on the other side: no per-element
-// encoding. bench/bench_exchange compares this with packed repeated protobuf fields.
+// encoding. bench/bench_exchange compares this with packed repeated protobuf fields. A message
+// given a SharedPayloadArena (a module serving ipc://) copies its large arrays into shared memory
+// instead and sends empty frames (wire/shared_payload.hpp).
 #pragma once
 
 #include <cstdint>
@@ -23,9 +25,15 @@ class ProtocolError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+class SharedPayloadArena;
+
 class Message {
  public:
   Envelope envelope;
+
+  /// Where add_array puts arrays of SharedPayloadArena::kMinBytes or more from now on (nullptr:
+  /// in frames). Kept by clear(); the arena must outlive the message's sends.
+  void use_arena(SharedPayloadArena* arena) { arena_ = arena; }
 
   /// Appends `values` (count * components doubles) as a raw frame named `name`.
   void add_array(std::string_view name, std::span<const double> values, std::uint32_t components);
@@ -46,13 +54,16 @@ class Message {
   /// Receives one whole message (blocking). Throws ProtocolError if it is malformed.
   void receive(zmq::socket_t& socket);
 
-  /// Bytes of array payload (for transport statistics).
+  /// Bytes of array payload, in frames or in shared memory (for transport statistics).
   std::size_t payload_bytes() const;
+  /// The part of payload_bytes() that is in shared memory rather than in frames.
+  std::size_t shared_payload_bytes() const;
 
  private:
   std::vector<zmq::message_t> frames_;  // frames_[i] holds envelope.arrays(i)
   // Small frames may be stored unaligned inside ZeroMQ; such arrays are copied here to read them.
   mutable std::vector<std::vector<double>> aligned_copies_;
+  SharedPayloadArena* arena_ = nullptr;
 };
 
 }  // namespace rockcut::wire

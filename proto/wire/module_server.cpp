@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "wire/protocol.hpp"
+#include "wire/shared_payload.hpp"
 #include "wire/spin_wait.hpp"
 
 namespace rockcut::wire {
@@ -29,6 +30,9 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
 
   Message request;
   Message reply;
+  // Over ipc:// the replies' large arrays go through shared memory (wire/shared_payload.hpp).
+  const std::unique_ptr<SharedPayloadArena> arena = SharedPayloadArena::for_endpoint(endpoint);
+  reply.use_arena(arena.get());
   using clock = std::chrono::steady_clock;
   double busy_s = 0.0;   // handling time, reported in every reply's Envelope.busy_s
   double after_s = 0.0;  // the part of it after replying (Envelope.after_reply_s)

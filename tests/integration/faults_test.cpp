@@ -9,6 +9,7 @@
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
 #include "output/summary_json.hpp"
+#include "wire/protocol.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -109,7 +110,7 @@ TEST(Faults, VersionMismatchedModuleIsRefusedNamingBothSides) {
                        dir, "coupler", &out, &err);
   EXPECT_EQ(code, 3);
   EXPECT_NE(err.find("protocol version mismatch"), std::string::npos) << err;
-  EXPECT_NE(err.find("speaks protocol 1"), std::string::npos) << err;
+  EXPECT_NE(err.find("speaks protocol " + std::to_string(rockcut::wire::kProtocolVersion)), std::string::npos) << err;
   EXPECT_NE(err.find("fake_module 9.9.9 speaks protocol 999"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir / "out" / "run.h5")) << "nothing may be written for a refused run";
 }

@@ -9,6 +9,8 @@
 //   raw     the project's wire::Message: Envelope in frame 0, one raw frame per array (add_array
 //           copies each array once; the receiver reads the frame in place). The client is
 //           wire::ModuleClient and the server wire::serve() with a ModuleHandler: the real code.
+//           Over ipc, arrays of 64 KiB or more go through shared memory instead (both sides;
+//           ROCKCUT_WIRE_SHARED_MEMORY=0 keeps them in frames).
 //   packed  bench_packed.proto: the same data as packed `repeated double` fields in frame 0 only
 //           (fill the repeated fields, SerializeToArray into a zmq::message_t, ParseFromArray).
 //           Client and server loops are written here and wait the same way ModuleClient does.
@@ -54,6 +56,7 @@
 #include "wire/module_client.hpp"
 #include "wire/module_server.hpp"
 #include "wire/protocol.hpp"
+#include "wire/shared_payload.hpp"
 
 namespace {
 
@@ -89,6 +92,9 @@ struct Link {
 
   std::unique_ptr<wire::ModuleClient> raw;  // Encoding::raw
   wire::Message request, reply;
+  // ipc: the kinematics go through shared memory as the DEM's do in a run (the coupler forwards
+  // the DEM's headers); ROCKCUT_WIRE_SHARED_MEMORY=0 keeps them in frames, on both sides.
+  std::unique_ptr<wire::SharedPayloadArena> arena;
   std::unique_ptr<zmq::socket_t> socket;    // Encoding::packed
   PackedKinematics packed_request;
   PackedForces packed_reply;
@@ -118,6 +124,8 @@ struct Link {
       wire::ClientHooks hooks;
       hooks.dead = [this] { return dead(); };
       raw = std::make_unique<wire::ModuleClient>(context, label(), endpoint, kStartTimeout, hooks);
+      arena = wire::SharedPayloadArena::for_endpoint(endpoint);
+      request.use_arena(arena.get());
       wire::Message hello, answer;
       hello.envelope.mutable_hello()->set_protocol_version(wire::kProtocolVersion);
       hello.envelope.mutable_hello()->set_expected_kind(wire::MODULE_KIND_FLUID);

@@ -1,6 +1,7 @@
 #include "wire/shared_payload.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -199,13 +200,34 @@ std::span<const double> read_shared(const ArrayHeader& header) {
           n};
 }
 
-void remove_shared_segments_of(pid_t pid) {
-  const std::string prefix = "rockcut." + std::to_string(pid) + ".";
+namespace {
+// Calls `f(file name, pid)` for every "rockcut.<pid>.*" entry of /dev/shm.
+template <typename F>
+void for_each_segment(F&& f) {
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator("/dev/shm", ec)) {
     const std::string file = entry.path().filename().string();
-    if (file.starts_with(prefix)) shm_unlink(("/" + file).c_str());
+    if (!file.starts_with("rockcut.")) continue;
+    const std::size_t dot = file.find('.', 8);
+    if (dot == std::string::npos) continue;
+    char* end = nullptr;
+    const long pid = std::strtol(file.c_str() + 8, &end, 10);
+    if (end != file.c_str() + dot || pid <= 0) continue;
+    f(file, static_cast<pid_t>(pid));
   }
+}
+}  // namespace
+
+void remove_orphaned_shared_segments() {
+  for_each_segment([](const std::string& file, pid_t pid) {
+    if (kill(pid, 0) != 0 && errno == ESRCH) shm_unlink(("/" + file).c_str());
+  });
+}
+
+void remove_shared_segments_of(pid_t pid) {
+  for_each_segment([pid](const std::string& file, pid_t owner) {
+    if (owner == pid) shm_unlink(("/" + file).c_str());
+  });
 }
 
 }  // namespace rockcut::wire

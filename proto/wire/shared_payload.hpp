@@ -15,7 +15,8 @@
 //
 // Segment names: "/rockcut.<pid>.<arena>-<clock>.<array>.<turn>.v<version>" (a new version when an array
 // outgrows its segment). The arena unlinks its segments when it is destroyed; the coupler removes
-// what a killed module left behind (remove_shared_segments_of).
+// what a killed module left behind (remove_shared_segments_of), and before an ipc run what any
+// dead process left (remove_orphaned_shared_segments).
 #pragma once
 
 #include <sys/types.h>
@@ -80,5 +81,9 @@ std::span<const double> read_shared(const ArrayHeader& header);
 
 /// Unlinks the segments of the process `pid` (a module that was killed cannot unlink its own).
 void remove_shared_segments_of(pid_t pid);
+
+/// Unlinks the segments of processes that no longer exist: what modules killed together with
+/// their coupler (SIGKILL, PR_SET_PDEATHSIG) left behind. The coupler calls it before an ipc run.
+void remove_orphaned_shared_segments();
 
 }  // namespace rockcut::wire

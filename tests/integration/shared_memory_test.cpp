@@ -2,7 +2,11 @@
 // the same bits as through frames and inproc, and no segment outlives the run, even when a module
 // is killed.
 #include <gtest/gtest.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <thread>
@@ -110,6 +114,32 @@ TEST(SharedMemory, NoSegmentOutlivesTheRunWhenAModuleIsKilled) {
   EXPECT_EQ(*code, 3);
   EXPECT_TRUE(segments_of(fluid).empty()) << "the killed fluid's segments were left behind";
   EXPECT_TRUE(segments_of(dem).empty()) << "the DEM's segments were left behind";
+}
+
+TEST(SharedMemory, AnIpcRunRemovesWhatDeadProcessesLeftBehind) {
+  // A module killed together with its coupler (SIGKILL: nobody unlinks) leaves segments named by
+  // its pid. Make such a pid: a child that has exited and been reaped.
+  const pid_t dead = fork();
+  if (dead == 0) _exit(0);
+  ASSERT_GT(dead, 0);
+  waitpid(dead, nullptr, 0);
+  const std::string orphan = "/rockcut." + std::to_string(dead) + ".0-1.force.0.v1";
+  const std::string mine = "/rockcut." + std::to_string(getpid()) + ".99-1.force.0.v1";
+  for (const std::string& name : {orphan, mine}) {
+    const int fd = shm_open(name.c_str(), O_RDWR | O_CREAT, 0600);
+    ASSERT_GE(fd, 0) << name;
+    close(fd);
+  }
+  const fs::path dir = fresh_dir("shared_memory_orphans");
+  std::string out, err;
+  EXPECT_EQ(run({bin("coupler"), "run", source("cases/verification/pressure_gradient.pbtxt"),
+                 "--out", (dir / "out").string()},
+                dir, "coupler", &out, &err),
+            0)
+      << err;
+  EXPECT_TRUE(segments_of(dead).empty()) << "the dead process's segment is still there";
+  EXPECT_EQ(segments_of(getpid()).size(), 1u) << "a live process's segment was removed";
+  shm_unlink(mine.c_str());
 }
 
 }  // namespace

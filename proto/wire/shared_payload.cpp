@@ -80,6 +80,20 @@ class MappingCache {
     return m;
   }
 
+  // Unmaps the segments of process `pid`: after its session no message points at them.
+  void forget(pid_t pid) {
+    std::lock_guard lock(mutex_);
+    const std::string prefix = "/rockcut." + std::to_string(pid) + ".";
+    for (auto it = by_slot_.begin(); it != by_slot_.end();) {
+      if (it->first.starts_with(prefix)) {
+        if (it->second.base) munmap(const_cast<void*>(it->second.base), it->second.size);
+        it = by_slot_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+
  private:
   std::mutex mutex_;
   std::unordered_map<std::string, Mapping> by_slot_;
@@ -225,6 +239,7 @@ void remove_orphaned_shared_segments() {
 }
 
 void remove_shared_segments_of(pid_t pid) {
+  mappings().forget(pid);
   for_each_segment([pid](const std::string& file, pid_t owner) {
     if (owner == pid) shm_unlink(("/" + file).c_str());
   });

@@ -79,7 +79,8 @@ class SharedPayloadArena {
 /// Throws ProtocolError if the segment is missing, too small or was written again since.
 std::span<const double> read_shared(const ArrayHeader& header);
 
-/// Unlinks the segments of the process `pid` (a module that was killed cannot unlink its own).
+/// Unlinks the segments of the process `pid` (a module that was killed cannot unlink its own)
+/// and unmaps this process's views of them; called when the session with `pid` has ended.
 void remove_shared_segments_of(pid_t pid);
 
 /// Unlinks the segments of processes that no longer exist: what modules killed together with

@@ -105,6 +105,11 @@ TEST(SharedPayload, ForwardedHeadersPointAtTheSenderSegmentWithoutACopy) {
   const auto x = at_fluid.array("position", 2);
   EXPECT_EQ(x.data(), coupler_view) << "one mapping of the segment per process, no copy";
   EXPECT_EQ(std::memcmp(x.data(), position.data(), x.size_bytes()), 0);
+
+  // The session with the sender is over (the coupler's ModuleLink::close): its segments are
+  // unlinked and this process's mapping of them dropped, so the array can no longer be read.
+  remove_shared_segments_of(getpid());
+  EXPECT_THROW(at_fluid.array("position", 2), ProtocolError);
 }
 
 TEST(SharedPayload, ValuesWrittenAgainBeforeTheyAreReadAreRefused) {

@@ -26,7 +26,7 @@ namespace {
 struct SegmentHeader {
   std::uint64_t magic;
   std::uint64_t generation;  // written last (release), read first (acquire)
-  std::uint64_t bytes;       // of values in the last write
+  std::uint64_t bytes;       // of values in the last write (checked against the reader's header)
   std::uint64_t reserved[5];
 };
 static_assert(sizeof(SegmentHeader) == 64);
@@ -200,7 +200,9 @@ std::span<const double> read_shared(const ArrayHeader& header) {
   const auto* h = static_cast<const SegmentHeader*>(m.base);
   const std::uint64_t generation = __atomic_load_n(&h->generation, __ATOMIC_ACQUIRE);
   const std::size_t n = header.count() * header.components();
-  if (h->magic != kMagic || sizeof(SegmentHeader) + n * sizeof(double) > m.size) {
+  // The sender's own count of the bytes it wrote must match the header it sent.
+  if (h->magic != kMagic || h->bytes != n * sizeof(double) ||
+      sizeof(SegmentHeader) + n * sizeof(double) > m.size) {
     throw ProtocolError("array '" + header.name() + "': shared-memory segment " + m.name +
                         " does not hold " + std::to_string(n) + " doubles");
   }

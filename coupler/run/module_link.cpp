@@ -22,8 +22,6 @@ ModuleLink::ModuleLink(zmq::context_t& context, const LinkSpec& spec) : spec_(sp
   const std::string kind(wire::kind_name(spec.kind));
   switch (spec.transport) {
     case Transport::ipc:
-      // Modules killed with an earlier coupler (SIGKILL) could not unlink their shared memory.
-      wire::remove_orphaned_shared_segments();
       process_ = std::make_unique<ChildProcess>(spec.executable,
                                                 std::vector<std::string>{"--bind", spec.endpoint});
       label_ = spec.executable.filename().string() + " (pid " + std::to_string(process_->pid()) + ")";

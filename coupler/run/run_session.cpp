@@ -11,6 +11,7 @@
 #include "run/signals.hpp"
 #include "run/verification.hpp"
 #include "wire/protocol.hpp"
+#include "wire/shared_payload.hpp"
 
 namespace rockcut::coupler {
 
@@ -111,6 +112,9 @@ void RunSession::start_modules() {
     }
     return spec;
   };
+  // Once per ipc run, before its modules start: modules killed together with an earlier coupler
+  // (SIGKILL) could not unlink their shared memory.
+  if (options_.transport == Transport::ipc) wire::remove_orphaned_shared_segments();
   dem_.link = std::make_unique<ModuleLink>(
       *context_, spec_for(wire::MODULE_KIND_DEM, scene_.dem().executable(), "dem_module",
                           options_.dem_endpoint));

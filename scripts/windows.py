@@ -2,6 +2,7 @@
 """Means of a cutting run's time series over windows of tool travel.
 
   scripts/windows OUT [OUT ...] [--every-mm 10] [--from-mm 0] [--csv FILE] [--plot PNG]
+                  [--plot-travel PNG]
 
 OUT is a run's output folder (`coupler run ... --out OUT`), or its run.h5, also of a run still
 going. A paper-scale cut takes hours, and one stopped early (Ctrl-C) or cut short
@@ -35,6 +36,11 @@ force_*_mean_n_per_m and pressure_*_mean_pa (tests/scripts/windows_test.py).
                  Several runs at one depth (other seeds) are drawn as their mean, a bar from
                  their lowest to their highest value and each run as a faint dot, as
                  scripts/sweep draws its seeds.
+  --plot-travel PNG
+                 draw the window means of each run against tool travel, one line per run
+                 (labelled with its depth and seed), in the same panels as --plot: whole cuts
+                 at several depths side by side, how far each has settled, and where its chips
+                 came off (--every-mm 1 for a fine trace). Also for a run still going.
 
 Several OUTs give one table each, in the order given: runs of one scene at several depths stopped
 at the same travel (paper-scale cuts take hours each) are compared window by window, the way
@@ -227,14 +233,7 @@ def plot(runs, every_m, png):
     if not usable:
         fail("--plot: no run has a summary.json with its hydrostatic pressure")
     coupled = any("p1_pa" in row for r in usable for row in r.rows)
-    panels = [("Fh [kN/m]", lambda w: w["fh_n_per_m"] * 1e-3),
-              ("Fv, up > 0 [kN/m]", lambda w: w["fv_n_per_m"] * 1e-3),
-              ("shear breaks / all breaks", shear_fraction),
-              ("mean chip area [mm$^2$]", lambda w: w.get("chip_area_mean_m2", math.nan) * 1e6)]
-    if coupled:
-        panels += [(f"{n.upper()}: p - p_hydro [MPa]",
-                    lambda w, n=n: w.get(f"{n}_pa", math.nan) * 1e-6) for n in NODES]
-        panels += [("cavitated particles", lambda w: w.get("fluid_cavitated_particles", math.nan))]
+    panels = travel_panels(coupled)
     cols = 4 if len(panels) > 4 else len(panels)
     nrows = (len(panels) + cols - 1) // cols
     fig, axes = plt.subplots(nrows, cols, figsize=(4.0 * cols, 3.2 * nrows), dpi=100,
@@ -276,6 +275,67 @@ def plot(runs, every_m, png):
     plt.close(fig)
 
 
+def travel_panels(coupled):
+    """(title, value of a window) of the panels that --plot and --plot-travel draw."""
+    panels = [("Fh [kN/m]", lambda w: w["fh_n_per_m"] * 1e-3),
+              ("Fv, up > 0 [kN/m]", lambda w: w["fv_n_per_m"] * 1e-3),
+              ("shear breaks / all breaks", shear_fraction),
+              ("mean chip area [mm$^2$]", lambda w: w.get("chip_area_mean_m2", math.nan) * 1e6)]
+    if coupled:
+        panels += [(f"{n.upper()}: p - p_hydro [MPa]",
+                    lambda w, n=n: w.get(f"{n}_pa", math.nan) * 1e-6) for n in NODES]
+        panels += [("cavitated particles", lambda w: w.get("fluid_cavitated_particles", math.nan))]
+    return panels
+
+
+def travel_lines(runs, panels):
+    """{panel title: [(run label, travel [mm], values)]}: each window drawn as a step over its
+    travel, so the x values are the windows' edges and every value appears twice."""
+    lines = {}
+    for run in runs:
+        name = f"{os.path.basename(os.path.dirname(os.path.abspath(run.label)))}: {run.depth:g} m"
+        if run.seed != 1:
+            name += f", seed {run.seed}"
+        for title, value in panels:
+            xs, ys = [], []
+            for w in run.rows:
+                v = value(w)
+                xs += [w["from_m"] * 1e3, w["to_m"] * 1e3]
+                ys += [v, v]
+            lines.setdefault(title, []).append((name, xs, ys))
+    return lines
+
+
+def plot_travel(runs, png):
+    """One panel per quantity, one line per run against tool travel."""
+    import plot_cutting  # noqa: F401  (the Agg backend)
+    import matplotlib.pyplot as plt
+    coupled = any("p1_pa" in row for r in runs for row in r.rows)
+    panels = travel_panels(coupled)
+    lines = travel_lines(runs, panels)
+    cols = 4 if len(panels) > 4 else len(panels)
+    nrows = (len(panels) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.0 * cols, 3.2 * nrows), dpi=100,
+                             squeeze=False, sharex=True)
+    for ax, (title, _) in zip(axes.flat, panels):
+        for k, (name, xs, ys) in enumerate(lines[title]):
+            ax.plot(xs, ys, "-", color=f"C{k % 10}", lw=1.2, label=name)
+        ax.set_xlabel("tool travel [mm]")
+        ax.set_title(title, fontsize=10)
+        if title.startswith("P") or title.startswith("Fv"):
+            ax.axhline(0.0, color="0.6", lw=0.8)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.set_visible(False)
+    axes.flat[0].legend(fontsize=8)
+    widths = sorted({round((w["to_m"] - w["from_m"]) * 1e3, 3) for r in runs for w in r.rows})
+    fig.suptitle(f"window means of {len(runs)} runs against tool travel "
+                 f"({widths[-1]:g} mm windows)", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(png)
+    plt.close(fig)
+    return lines
+
+
 def shear_fraction(w):
     tensile, shear = w.get("breaks_tensile"), w.get("breaks_shear")
     if tensile is None or shear is None or tensile + shear <= 0:
@@ -290,12 +350,15 @@ def main(argv):
     ap.add_argument("--from-mm", type=float, default=0.0)
     ap.add_argument("--csv", help="also write the rows to this CSV file (SI units)")
     ap.add_argument("--plot", help="draw the runs' window means against p_hydro into this PNG")
+    ap.add_argument("--plot-travel", help="draw each run's window means against tool travel "
+                    "into this PNG")
     args = ap.parse_args(argv)
     if not (args.every_mm > 0) or not math.isfinite(args.every_mm):
         fail(f"--every-mm {args.every_mm}: must be a window width > 0 mm")
     if not math.isfinite(args.from_mm):
         fail(f"--from-mm {args.from_mm}: must be a number of mm")
-    for option, target in (("--csv", args.csv), ("--plot", args.plot)):
+    for option, target in (("--csv", args.csv), ("--plot", args.plot),
+                           ("--plot-travel", args.plot_travel)):
         folder = os.path.dirname(os.path.abspath(target)) if target else None
         if folder and not os.path.isdir(folder):
             fail(f"{option} {target}: no folder {folder} to write it in")
@@ -326,6 +389,9 @@ def main(argv):
     if args.plot:
         plot(runs, args.every_mm * 1e-3, args.plot)
         print(f"plot: {args.plot}")
+    if args.plot_travel:
+        plot_travel(runs, args.plot_travel)
+        print(f"plot: {args.plot_travel}")
     return 0
 
 

@@ -181,6 +181,57 @@ class WindowsOfACut(unittest.TestCase):
             self.assertAlmostEqual(sum(values) / 2, 2.0 * w["fh_n_per_m"],
                                    delta=REL * 2.0 * abs(w["fh_n_per_m"]))
 
+    def test_runs_are_drawn_against_travel(self):
+        # A copy whose stored scene says 2000 m and whose vertical force is doubled stands for a
+        # second depth. Each run is one line per panel, labelled with its depth; every window is
+        # a step over its own travel with the CSV's value.
+        import h5py
+        sys.path.insert(0, os.path.join(ROOT, "scripts"))
+        import windows as windows_module
+        deep = os.path.join(self.out, "deep")
+        os.makedirs(deep, exist_ok=True)
+        shutil.copy(os.path.join(self.out, "run.h5"), deep)
+        with h5py.File(os.path.join(deep, "run.h5"), "r+") as f:
+            scene = f.attrs["scene"]
+            scene = scene.decode() if isinstance(scene, bytes) else scene
+            f.attrs["scene"] = "water_depth_m: 2000\n" + scene
+            f["timeseries/tool_force_y_n_per_m"][...] *= 2.0
+        path = os.path.join(self.out, "travel.csv")
+        png = os.path.join(self.out, "travel.png")
+        if os.path.exists(png):
+            os.remove(png)
+        r = windows(self.out, deep, "--every-mm", "1", "--csv", path, "--plot-travel", png)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn(f"plot: {png}", r.stdout)
+        with open(png, "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        self.assertGreater(os.path.getsize(png), 10000)
+        rows = read_csv(path)
+        per_run = len(rows) // 2
+        runs = []
+        for out in (self.out, deep):
+            h5, series = windows_module.read_series(out)
+            runs.append(windows_module.Run(h5, *windows_module.run_facts(h5),
+                                           windows_module.windows(series, 0.001, 0.0)))
+        panels = windows_module.travel_panels(coupled=True)
+        lines = windows_module.travel_lines(runs, panels)
+        self.assertEqual(len(lines), 8)  # Fh, Fv, shear fraction, chip area, P1-P3, cavitated
+        fv = lines["Fv, up > 0 [kN/m]"]
+        self.assertEqual([name for name, _, _ in fv], ["windows_cut: 0 m", "deep: 2000 m"])
+        for (name, xs, ys), mine, factor in ((fv[0], rows[:per_run], 1.0),
+                                             (fv[1], rows[:per_run], 2.0)):
+            self.assertEqual(len(xs), 2 * per_run, name)
+            for k, w in enumerate(mine):
+                self.assertAlmostEqual(xs[2 * k], w["from_m"] * 1e3, delta=1e-9)
+                self.assertAlmostEqual(xs[2 * k + 1], w["to_m"] * 1e3, delta=1e-9)
+                want = factor * w["fv_n_per_m"] * 1e-3
+                self.assertEqual(ys[2 * k], ys[2 * k + 1])
+                self.assertLessEqual(abs(ys[2 * k] - want), REL * abs(want), name)
+        # Nowhere to write it: refused before anything is read.
+        r = windows(self.out, "--plot-travel", os.path.join(self.out, "no_such", "t.png"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--plot-travel", r.stderr)
+
     def test_bad_input_is_refused_with_the_reason(self):
         missing = os.path.join(self.out, "no_such_run")
         r = windows(missing)

@@ -233,7 +233,7 @@ def plot(runs, every_m, png):
     if not usable:
         fail("--plot: no run has a summary.json with its hydrostatic pressure")
     coupled = any("p1_pa" in row for r in usable for row in r.rows)
-    panels = travel_panels(coupled)
+    panels = window_panels(coupled)
     cols = 4 if len(panels) > 4 else len(panels)
     nrows = (len(panels) + cols - 1) // cols
     fig, axes = plt.subplots(nrows, cols, figsize=(4.0 * cols, 3.2 * nrows), dpi=100,
@@ -275,7 +275,7 @@ def plot(runs, every_m, png):
     plt.close(fig)
 
 
-def travel_panels(coupled):
+def window_panels(coupled):
     """(title, value of a window) of the panels that --plot and --plot-travel draw."""
     panels = [("Fh [kN/m]", lambda w: w["fh_n_per_m"] * 1e-3),
               ("Fv, up > 0 [kN/m]", lambda w: w["fv_n_per_m"] * 1e-3),
@@ -306,12 +306,12 @@ def travel_lines(runs, panels):
     return lines
 
 
-def plot_travel(runs, png):
+def plot_travel(runs, every_m, png):
     """One panel per quantity, one line per run against tool travel."""
     import plot_cutting  # noqa: F401  (the Agg backend)
     import matplotlib.pyplot as plt
     coupled = any("p1_pa" in row for r in runs for row in r.rows)
-    panels = travel_panels(coupled)
+    panels = window_panels(coupled)
     lines = travel_lines(runs, panels)
     cols = 4 if len(panels) > 4 else len(panels)
     nrows = (len(panels) + cols - 1) // cols
@@ -327,9 +327,8 @@ def plot_travel(runs, png):
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
     axes.flat[0].legend(fontsize=8)
-    widths = sorted({round((w["to_m"] - w["from_m"]) * 1e3, 3) for r in runs for w in r.rows})
     fig.suptitle(f"window means of {len(runs)} runs against tool travel "
-                 f"({widths[-1]:g} mm windows)", fontsize=11)
+                 f"({every_m * 1e3:g} mm windows)", fontsize=11)
     fig.tight_layout()
     fig.savefig(png)
     plt.close(fig)
@@ -390,7 +389,7 @@ def main(argv):
         plot(runs, args.every_mm * 1e-3, args.plot)
         print(f"plot: {args.plot}")
     if args.plot_travel:
-        plot_travel(runs, args.plot_travel)
+        plot_travel(runs, args.every_mm * 1e-3, args.plot_travel)
         print(f"plot: {args.plot_travel}")
     return 0
 

@@ -213,7 +213,7 @@ class WindowsOfACut(unittest.TestCase):
             h5, series = windows_module.read_series(out)
             runs.append(windows_module.Run(h5, *windows_module.run_facts(h5),
                                            windows_module.windows(series, 0.001, 0.0)))
-        panels = windows_module.travel_panels(coupled=True)
+        panels = windows_module.window_panels(coupled=True)
         lines = windows_module.travel_lines(runs, panels)
         self.assertEqual(len(lines), 8)  # Fh, Fv, shear fraction, chip area, P1-P3, cavitated
         fv = lines["Fv, up > 0 [kN/m]"]

@@ -234,10 +234,7 @@ def plot(runs, every_m, png):
         fail("--plot: no run has a summary.json with its hydrostatic pressure")
     coupled = any("p1_pa" in row for r in usable for row in r.rows)
     panels = window_panels(coupled)
-    cols = 4 if len(panels) > 4 else len(panels)
-    nrows = (len(panels) + cols - 1) // cols
-    fig, axes = plt.subplots(nrows, cols, figsize=(4.0 * cols, 3.2 * nrows), dpi=100,
-                             squeeze=False)
+    fig, axes = panel_grid(plt, len(panels))
     for ax, (title, value) in zip(axes.flat, panels):
         for k, (start, points) in enumerate(depth_points(usable, every_m, value).items()):
             colour = f"C{k % 10}"
@@ -258,8 +255,6 @@ def plot(runs, every_m, png):
         ax.set_title(title, fontsize=10)
         if title.startswith("P"):
             ax.axhline(0.0, color="0.6", lw=0.8)
-    for ax in list(axes.flat)[len(panels):]:
-        ax.set_visible(False)
     axes.flat[0].legend(title="tool travel", fontsize=8)
     seeds = {}
     for r in usable:
@@ -273,6 +268,17 @@ def plot(runs, every_m, png):
     fig.tight_layout()
     fig.savefig(png)
     plt.close(fig)
+
+
+def panel_grid(plt, count, **subplots):
+    """A figure with `count` panels, four to a row, and the axes of the ones in use."""
+    cols = 4 if count > 4 else count
+    nrows = (count + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.0 * cols, 3.2 * nrows), dpi=100,
+                             squeeze=False, **subplots)
+    for ax in list(axes.flat)[count:]:
+        ax.set_visible(False)
+    return fig, axes
 
 
 def window_panels(coupled):
@@ -313,10 +319,7 @@ def plot_travel(runs, every_m, png):
     coupled = any("p1_pa" in row for r in runs for row in r.rows)
     panels = window_panels(coupled)
     lines = travel_lines(runs, panels)
-    cols = 4 if len(panels) > 4 else len(panels)
-    nrows = (len(panels) + cols - 1) // cols
-    fig, axes = plt.subplots(nrows, cols, figsize=(4.0 * cols, 3.2 * nrows), dpi=100,
-                             squeeze=False, sharex=True)
+    fig, axes = panel_grid(plt, len(panels), sharex=True)
     for ax, (title, _) in zip(axes.flat, panels):
         for k, (name, xs, ys) in enumerate(lines[title]):
             ax.plot(xs, ys, "-", color=f"C{k % 10}", lw=1.2, label=name)
@@ -324,8 +327,6 @@ def plot_travel(runs, every_m, png):
         ax.set_title(title, fontsize=10)
         if title.startswith("P") or title.startswith("Fv"):
             ax.axhline(0.0, color="0.6", lw=0.8)
-    for ax in list(axes.flat)[len(panels):]:
-        ax.set_visible(False)
     axes.flat[0].legend(fontsize=8)
     fig.suptitle(f"window means of {len(runs)} runs against tool travel "
                  f"({every_m * 1e3:g} mm windows)", fontsize=11)

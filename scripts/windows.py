@@ -20,6 +20,12 @@ prints one row:
   tensile, shear, shear %  bond breaks by mode at the window's last sample
   chips, chip mm^2         chips and their mean area at the window's last sample
   cavitated                coupled runs: particles at the cavitation limit at the last sample
+  window breaks            bonds broken within the window (run.h5's /breaks, by the tool travel at
+                           the time of each break)
+  ahead [mm], below tip %  where they broke: the median distance of the breaks ahead of the tool
+                           tip in the cutting direction at the time of each break (negative:
+                           behind it) and the share of them below the tip's height. A crushed zone
+                           that grows ahead of and under the tool shows as both growing.
 
 The means are those of summary.json taken over a window instead of the steady part: with
 --from-mm at `steady_after_m` and --every-mm past the end, the one window gives summary.json's
@@ -96,6 +102,43 @@ def read_series(path):
     return path, series
 
 
+def read_breaks(path):
+    """run.h5's /breaks (one row per broken bond: time_s, x_m, y_m) as float arrays, or None for
+    a file without them (a run with no bonds). Rows a running writer is still adding are cut to
+    the shortest column."""
+    import h5py
+    import numpy as np
+    with h5py.File(path, "r") as f:
+        if "breaks" not in f:
+            return None
+        g = f["breaks"]
+        try:
+            cols = {k: np.asarray(g[k][()], dtype=float) for k in ("time_s", "x_m", "y_m")}
+        except (KeyError, OSError, ValueError):
+            return None
+    n = min(len(v) for v in cols.values())
+    return {k: v[:n] for k, v in cols.items()}
+
+
+def break_places(series, breaks):
+    """(tool travel [m], distance ahead of the tip [m], height above the tip [m]) of each break,
+    with the tool's travel and tip taken at the break's time (linear between samples; the tool
+    moves at a constant velocity, so that is exact between samples after its start). None when
+    the time series has no tip or time."""
+    import numpy as np
+    need = ("time_s", "tool_tip_x_m", "tool_tip_y_m")
+    if breaks is None or any(k not in series for k in need):
+        return None
+    t = series["time_s"]
+    tip_x, tip_y = series["tool_tip_x_m"], series["tool_tip_y_m"]
+    direction = 1.0 if tip_x[-1] >= tip_x[0] else -1.0  # the cut runs towards +x or -x
+    bt = breaks["time_s"]
+    travel = np.interp(bt, t, series["tool_travel_m"])
+    ahead = direction * (breaks["x_m"] - np.interp(bt, t, tip_x))
+    above = breaks["y_m"] - np.interp(bt, t, tip_y)
+    return travel, ahead, above
+
+
 def run_facts(path):
     """(water depth [m] and specimen seed from the scene stored in run.h5, hydrostatic pressure
     [Pa] from the run's summary.json or NaN while the run has none). The stored scene is the one
@@ -127,9 +170,12 @@ def mean(values):
     return float(values.mean()) if values.size else math.nan
 
 
-def windows(series, every_m, from_m):
-    """Rows of window means: dicts of SI values, as documented above."""
+def windows(series, every_m, from_m, breaks=None):
+    """Rows of window means: dicts of SI values, as documented above. `breaks` (read_breaks)
+    adds where the window's bonds broke."""
+    import numpy as np
     travel = series["tool_travel_m"]
+    places = break_places(series, breaks)
     last = float(travel.max())
     rows = []
     start = from_m
@@ -155,6 +201,13 @@ def windows(series, every_m, from_m):
                         "fluid_cavitated_particles"):
                 if key in series:
                     row[key] = float(series[key][at_end])
+            if places is not None:
+                b_travel, ahead, above = places
+                inside = (b_travel >= start) & (True if is_last else b_travel < end)
+                row["window_breaks"] = int(inside.sum())
+                row["break_ahead_median_m"] = (float(np.median(ahead[inside])) if inside.any()
+                                               else math.nan)
+                row["break_below_tip_fraction"] = mean((above[inside] < 0).astype(float))
             rows.append(row)
         if is_last:
             break
@@ -174,6 +227,9 @@ def print_table(rows):
     head += ["tensile", "shear", "shear %", "chips", "chip [mm^2]"]
     if coupled:
         head += ["cavitated"]
+    located = any("window_breaks" in r for r in rows)
+    if located:
+        head += ["window breaks", "ahead [mm]", "below tip %"]
     print("| " + " | ".join(head) + " |")
     print("|" + "|".join("---" if k == 0 else "---:" for k in range(len(head))) + "|")
     for r in rows:
@@ -187,6 +243,9 @@ def print_table(rows):
                   fmt(r.get("chips"), 1, 0), fmt(r.get("chip_area_mean_m2"), 1e6, 2)]
         if coupled:
             cells += [fmt(r.get("fluid_cavitated_particles"), 1, 0)]
+        if located:
+            cells += [fmt(r.get("window_breaks"), 1, 0), fmt(r.get("break_ahead_median_m"), 1e3, 1),
+                      fmt(r.get("break_below_tip_fraction"), 100, 0)]
         print("| " + " | ".join(cells) + " |")
 
 
@@ -365,7 +424,7 @@ def main(argv):
     runs = []
     for out in args.out:
         path, series = read_series(out)
-        rows = windows(series, args.every_mm * 1e-3, args.from_mm * 1e-3)
+        rows = windows(series, args.every_mm * 1e-3, args.from_mm * 1e-3, read_breaks(path))
         reached_mm = float(series["tool_travel_m"].max()) * 1e3
         if not rows:
             fail(f"{path}: no sample at or beyond {args.from_mm} mm of travel "

@@ -232,6 +232,56 @@ class WindowsOfACut(unittest.TestCase):
         self.assertEqual(r.returncode, 2)
         self.assertIn("--plot-travel", r.stderr)
 
+    def test_the_breaks_are_placed_against_the_tool_tip(self):
+        # The run's own breaks: every bond broken in the cut falls in exactly one window, so the
+        # window counts add up to the time series' tensile + shear count at its end.
+        path = os.path.join(self.out, "placed.csv")
+        r = windows(self.out, "--every-mm", "1", "--csv", path)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("ahead [mm]", r.stdout)
+        rows = read_csv(path)
+        last = rows[-1]
+        self.assertGreater(last["breaks_tensile"] + last["breaks_shear"], 0)
+        self.assertEqual(sum(w["window_breaks"] for w in rows),
+                         last["breaks_tensile"] + last["breaks_shear"])
+        # A copy whose breaks are replaced by three per time-series sample, at the tip's place
+        # at that sample plus (3 mm ahead, 1 mm below), (5 mm ahead, 2 mm below) and (7 mm
+        # ahead, 1 mm above): every window holds three times its samples, their median lies
+        # 5 mm ahead, and two thirds of them below the tip. A sign error in the cutting direction
+        # or the height (a third below), or breaks put in the wrong window by their time, moves
+        # these by whole millimetres, thirds or samples.
+        import h5py
+        import numpy as np
+        placed = os.path.join(self.out, "placed")
+        os.makedirs(placed, exist_ok=True)
+        shutil.copy(os.path.join(self.out, "run.h5"), placed)
+        with h5py.File(os.path.join(placed, "run.h5"), "r+") as f:
+            ts = f["timeseries"]
+            t = np.asarray(ts["time_s"][()], dtype=float)
+            tip_x = np.asarray(ts["tool_tip_x_m"][()], dtype=float)
+            tip_y = np.asarray(ts["tool_tip_y_m"][()], dtype=float)
+            self.assertGreater(tip_x[-1], tip_x[0])  # the scene cuts towards +x
+            n = 3 * len(t)
+            new = {"time_s": np.repeat(t, 3),
+                   "x_m": np.ravel(np.column_stack([tip_x + 0.003, tip_x + 0.005,
+                                                    tip_x + 0.007])),
+                   "y_m": np.ravel(np.column_stack([tip_y - 0.001, tip_y - 0.002,
+                                                    tip_y + 0.001])),
+                   "mode": np.zeros(n), "step": np.zeros(n, dtype=np.uint64)}
+            for name, values in new.items():
+                if name in f["breaks"]:
+                    del f["breaks"][name]
+                f["breaks"].create_dataset(name, data=values)
+        path = os.path.join(self.out, "placed_copy.csv")
+        r = windows(placed, "--every-mm", "2", "--csv", path)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = read_csv(path)
+        self.assertGreaterEqual(len(rows), 3)
+        for w in rows:
+            self.assertEqual(w["window_breaks"], 3 * w["samples"], w["from_m"])
+            self.assertAlmostEqual(w["break_ahead_median_m"], 0.005, delta=1e-9)
+            self.assertAlmostEqual(w["break_below_tip_fraction"], 2 / 3, delta=1e-12)
+
     def test_bad_input_is_refused_with_the_reason(self):
         missing = os.path.join(self.out, "no_such_run")
         r = windows(missing)

@@ -2,7 +2,7 @@
 """Means of a cutting run's time series over windows of tool travel.
 
   scripts/windows OUT [OUT ...] [--every-mm 10] [--from-mm 0] [--csv FILE] [--plot PNG]
-                  [--plot-travel PNG]
+                  [--plot-travel PNG] [--frames]
 
 OUT is a run's output folder (`coupler run ... --out OUT`), or its run.h5, also of a run still
 going. A paper-scale cut takes hours, and one stopped early (Ctrl-C) or cut short
@@ -47,6 +47,13 @@ force_*_mean_n_per_m and pressure_*_mean_pa (tests/scripts/windows_test.py).
                  (labelled with its depth and seed), in the same panels as --plot: whole cuts
                  at several depths side by side, how far each has settled, and where its chips
                  came off (--every-mm 1 for a fine trace). Also for a run still going.
+
+  --frames       also table what lies on the tool in each frame of run.h5 (frames need the
+                 `position`, `radius` and `damage` fields): the discs whose centre lies above the
+                 block's initial top surface (the cut material, count and area), and of them the
+                 ones from 40 mm behind the tip to 10 mm ahead of it (the pile the tool pushes),
+                 and the loose discs there (damage 1: every bond broken) above the tip's height.
+                 A cut whose crushed grains pile up on the tool shows a growing loose count.
 
 Several OUTs give one table each, in the order given: runs of one scene at several depths stopped
 at the same travel (paper-scale cuts take hours each) are compared window by window, the way
@@ -137,6 +144,65 @@ def break_places(series, breaks):
     ahead = direction * (breaks["x_m"] - np.interp(bt, t, tip_x))
     above = breaks["y_m"] - np.interp(bt, t, tip_y)
     return travel, ahead, above
+
+
+PILE_BEHIND_M, PILE_AHEAD_M = 0.04, 0.01  # the --frames window around the tip [m]
+
+
+def pile_rows(path, series):
+    """--frames: one dict per frame of run.h5, in SI units, as documented above."""
+    import h5py
+    import numpy as np
+    import plot_cutting
+    rows = []
+    t = series.get("time_s")
+    if t is None or "tool_tip_x_m" not in series or "tool_tip_y_m" not in series:
+        fail(f"{path}: --frames needs the time series' time_s, tool_tip_x_m and tool_tip_y_m")
+    tip_x, tip_y = series["tool_tip_x_m"], series["tool_tip_y_m"]
+    direction = 1.0 if tip_x[-1] >= tip_x[0] else -1.0
+    fields = ("position", "radius", "damage")
+    with h5py.File(path, "r") as f:
+        names = sorted(f["frames"].keys()) if "frames" in f else []
+        if not names:
+            fail(f"{path}: --frames: the run wrote no frames (output.frame_interval_s 0?)")
+        if any(k not in f["frames"][names[0]] for k in fields):
+            fail(f"{path}: --frames needs the frame fields {', '.join(fields)} "
+                 f"(output.frame_fields); the first frame has {', '.join(f['frames'][names[0]])}")
+        pos0, r0, _ = plot_cutting.read_frame(f["frames"][names[0]], fields)
+        top = float((pos0[:, 1] + r0).max())  # the block's initial top surface [m]
+        for name in names:
+            g = f["frames"][name]
+            try:
+                pos, r, damage = plot_cutting.read_frame(g, fields)
+            except (KeyError, OSError, ValueError):
+                continue  # the newest frame of a run still writing it
+            time = float(g.attrs.get("time_s", math.nan))
+            if not math.isfinite(time):
+                continue
+            tx, ty = float(np.interp(time, t, tip_x)), float(np.interp(time, t, tip_y))
+            ahead = direction * (pos[:, 0] - tx)
+            above = pos[:, 1] > top
+            near = above & (ahead >= -PILE_BEHIND_M) & (ahead <= PILE_AHEAD_M)
+            loose = ((damage >= 1.0 - 1e-9) & (ahead >= -PILE_BEHIND_M) & (ahead <= PILE_AHEAD_M)
+                     & (pos[:, 1] > ty))
+            area = np.pi * r * r
+            rows.append({"time_s": time,
+                         "tool_travel_m": float(np.interp(time, t, series["tool_travel_m"])),
+                         "above_surface": int(above.sum()),
+                         "above_surface_area_m2": float(area[above].sum()),
+                         "at_tool": int(near.sum()), "at_tool_area_m2": float(area[near].sum()),
+                         "loose_at_tool": int(loose.sum())})
+    return rows
+
+
+def print_pile(rows):
+    print("| frame t [ms] | travel [mm] | above surface | area [mm^2] | at the tool | area [mm^2] "
+          "| loose at the tool |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        print(f"| {r['time_s'] * 1e3:.1f} | {r['tool_travel_m'] * 1e3:.1f} | {r['above_surface']} "
+              f"| {r['above_surface_area_m2'] * 1e6:.1f} | {r['at_tool']} "
+              f"| {r['at_tool_area_m2'] * 1e6:.1f} | {r['loose_at_tool']} |")
 
 
 def run_facts(path):
@@ -411,6 +477,8 @@ def main(argv):
     ap.add_argument("--plot", help="draw the runs' window means against p_hydro into this PNG")
     ap.add_argument("--plot-travel", help="draw each run's window means against tool travel "
                     "into this PNG")
+    ap.add_argument("--frames", action="store_true",
+                    help="also table what lies on the tool in each frame")
     args = ap.parse_args(argv)
     if not (args.every_mm > 0) or not math.isfinite(args.every_mm):
         fail(f"--every-mm {args.every_mm}: must be a window width > 0 mm")
@@ -436,6 +504,9 @@ def main(argv):
         print(f"{path}: {len(series['tool_travel_m'])} samples, tool travel up to "
               f"{reached_mm:.2f} mm, water depth {depth:g} m, seed {seed}")
         print_table(rows)
+        if args.frames:
+            print()
+            print_pile(pile_rows(path, series))
     if args.csv:
         first = ["run", "water_depth_m", "seed"]
         table = [{"run": r.label, "water_depth_m": r.depth, "seed": r.seed, **row}

@@ -45,7 +45,7 @@ class WindowsOfACut(unittest.TestCase):
         run = subprocess.run(
             [ARGS.coupler, "run", CASE, "--out", cls.out, "--transport", "inproc",
              "--set", "time.end_time_s=0.007", "--set", "dem.tool.steady_after_m=0.003",
-             "--set", "output.frame_interval_s=0", "--set", "output.timeseries_every_steps=30"],
+             "--set", "output.frame_interval_s=0.003", "--set", "output.timeseries_every_steps=30"],
             capture_output=True, text=True, timeout=240)
         if run.returncode != 0:
             raise RuntimeError(run.stdout + run.stderr)
@@ -281,6 +281,69 @@ class WindowsOfACut(unittest.TestCase):
             self.assertEqual(w["window_breaks"], 3 * w["samples"], w["from_m"])
             self.assertAlmostEqual(w["break_ahead_median_m"], 0.005, delta=1e-9)
             self.assertAlmostEqual(w["break_below_tip_fraction"], 2 / 3, delta=1e-12)
+
+    def test_what_lies_on_the_tool_is_counted_per_frame(self):
+        # The run's last frame in a copy, with every disc moved far below the tip and made loose but four
+        # groups placed around the tool tip of that frame's time (the block's top surface is
+        # read from the first frame, which stays as written):
+        #   A: 5 discs 20 mm behind the tip, 1 mm above the surface, bonded     -> above, at tool
+        #   B: 3 discs 5 mm ahead of the tip, 1 mm above the surface, loose     -> above, at tool, loose
+        #   C: 2 discs 60 mm behind the tip, 1 mm above the surface, loose      -> above only
+        #   D: 4 discs 5 mm ahead of the tip, 1 mm above the tip, loose         -> loose only
+        # A sign error in the cutting direction swaps which of A, B and C count; a wrong window
+        # edge, surface height or damage threshold, or loose discs counted below the tip, moves
+        # the counts by whole groups.
+        import h5py
+        import numpy as np
+        sys.path.insert(0, os.path.join(ROOT, "scripts"))
+        import windows as windows_module
+        r = windows(self.out, "--frames")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("loose at the tool", r.stdout)
+        pile = os.path.join(self.out, "pile")
+        os.makedirs(pile, exist_ok=True)
+        shutil.copy(os.path.join(self.out, "run.h5"), pile)
+        h5 = os.path.join(pile, "run.h5")
+        _, series = windows_module.read_series(h5)
+        with h5py.File(h5, "r+") as f:
+            names = sorted(f["frames"].keys())
+            self.assertGreaterEqual(len(names), 3)
+            first = f["frames"][names[0]]
+            top = float((first["position"][()][:, 1] + first["radius"][()]).max())
+            g = f["frames"][names[-1]]
+            time = float(g.attrs["time_s"])
+            tx = float(np.interp(time, series["time_s"], series["tool_tip_x_m"]))
+            ty = float(np.interp(time, series["time_s"], series["tool_tip_y_m"]))
+            pos = np.array(g["position"][()])
+            damage = np.ones(len(pos))
+            pos[:, 0], pos[:, 1] = tx, -1.0
+            groups = [(5, -0.020, top + 0.001, 0.0), (3, 0.005, top + 0.001, 1.0),
+                      (2, -0.060, top + 0.001, 1.0), (4, 0.005, ty + 0.001, 1.0)]
+            k = 0
+            for count, ahead, y, d in groups:
+                pos[k:k + count, 0] = tx + ahead
+                pos[k:k + count, 1] = y
+                damage[k:k + count] = d
+                k += count
+            g["position"][...] = pos
+            g["damage"][...] = damage
+            radius = np.array(g["radius"][()])
+        rows = windows_module.pile_rows(h5, series)
+        last = rows[-1]
+        self.assertEqual(last["time_s"], time)
+        self.assertEqual(last["above_surface"], 10)
+        self.assertEqual(last["at_tool"], 8)
+        self.assertEqual(last["loose_at_tool"], 7)
+        area = float(np.pi * (radius[:8] ** 2).sum())
+        self.assertLessEqual(abs(last["at_tool_area_m2"] - area), 1e-12 * area)
+        # Frames without the damage field: refused, naming the field to add.
+        with h5py.File(h5, "r+") as f:
+            for name in f["frames"]:
+                del f["frames"][name]["damage"]
+        r = windows(pile, "--frames")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("damage", r.stderr)
+        self.assertIn("output.frame_fields", r.stderr)
 
     def test_bad_input_is_refused_with_the_reason(self):
         missing = os.path.join(self.out, "no_such_run")

@@ -127,6 +127,11 @@ def read_breaks(path):
     return {k: v[:n] for k, v in cols.items()}
 
 
+def cut_direction(tip_x):
+    """+1 when the tool cuts towards +x (its tip's x grows over the run), -1 towards -x."""
+    return 1.0 if tip_x[-1] >= tip_x[0] else -1.0
+
+
 def break_places(series, breaks):
     """(tool travel [m], distance ahead of the tip [m], height above the tip [m]) of each break,
     with the tool's travel and tip taken at the break's time (linear between samples; the tool
@@ -138,7 +143,7 @@ def break_places(series, breaks):
         return None
     t = series["time_s"]
     tip_x, tip_y = series["tool_tip_x_m"], series["tool_tip_y_m"]
-    direction = 1.0 if tip_x[-1] >= tip_x[0] else -1.0  # the cut runs towards +x or -x
+    direction = cut_direction(tip_x)
     bt = breaks["time_s"]
     travel = np.interp(bt, t, series["tool_travel_m"])
     ahead = direction * (breaks["x_m"] - np.interp(bt, t, tip_x))
@@ -159,7 +164,7 @@ def pile_rows(path, series):
     if t is None or "tool_tip_x_m" not in series or "tool_tip_y_m" not in series:
         fail(f"{path}: --frames needs the time series' time_s, tool_tip_x_m and tool_tip_y_m")
     tip_x, tip_y = series["tool_tip_x_m"], series["tool_tip_y_m"]
-    direction = 1.0 if tip_x[-1] >= tip_x[0] else -1.0
+    direction = cut_direction(tip_x)
     fields = ("position", "radius", "damage")
     with h5py.File(path, "r") as f:
         names = sorted(f["frames"].keys()) if "frames" in f else []

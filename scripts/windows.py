@@ -25,7 +25,9 @@ prints one row:
   ahead [mm], below tip %  where they broke: the median distance of the breaks ahead of the tool
                            tip in the cutting direction at the time of each break (negative:
                            behind it) and the share of them below the tip's height. A crushed zone
-                           that grows ahead of and under the tool shows as both growing.
+                           that grows ahead of and under the tool shows as both growing. The
+                           coupler writes /breaks with each frame, so in a run still going the
+                           windows past its newest frame show '-' here.
 
 The means are those of summary.json taken over a window instead of the steady part: with
 --from-mm at `steady_after_m` and --every-mm past the end, the one window gives summary.json's
@@ -110,9 +112,11 @@ def read_series(path):
 
 
 def read_breaks(path):
-    """run.h5's /breaks (one row per broken bond: time_s, x_m, y_m) as float arrays, or None for
-    a file without them (a run with no bonds). Rows a running writer is still adding are cut to
-    the shortest column."""
+    """run.h5's /breaks (one row per broken bond: time_s, x_m, y_m) as float arrays, and
+    `covered_to_s`, the time up to which they are complete; or None for a file without them (a run
+    with no bonds). The coupler appends the breaks since the last frame with each frame (also the
+    first and the last, whatever the frame interval), so they are complete up to the newest
+    frame. Rows a running writer is still adding are cut to the shortest column."""
     import h5py
     import numpy as np
     with h5py.File(path, "r") as f:
@@ -123,8 +127,12 @@ def read_breaks(path):
             cols = {k: np.asarray(g[k][()], dtype=float) for k in ("time_s", "x_m", "y_m")}
         except (KeyError, OSError, ValueError):
             return None
+        frames = f["frames"] if "frames" in f else {}
+        times = [float(frames[k].attrs.get("time_s", math.nan)) for k in frames]
     n = min(len(v) for v in cols.values())
-    return {k: v[:n] for k, v in cols.items()}
+    breaks = {k: v[:n] for k, v in cols.items()}
+    breaks["covered_to_s"] = max((t for t in times if math.isfinite(t)), default=-math.inf)
+    return breaks
 
 
 def cut_direction(tip_x):
@@ -272,7 +280,12 @@ def windows(series, every_m, from_m, breaks=None):
                         "fluid_cavitated_particles"):
                 if key in series:
                     row[key] = float(series[key][at_end])
-            if places is not None:
+            if places is not None and series["time_s"][at_end] > breaks["covered_to_s"]:
+                # past the newest frame: its breaks are not written yet
+                row["window_breaks"] = math.nan
+                row["break_ahead_median_m"] = math.nan
+                row["break_below_tip_fraction"] = math.nan
+            elif places is not None:
                 b_travel, ahead, above = places
                 inside = (b_travel >= start) & (True if is_last else b_travel < end)
                 row["window_breaks"] = int(inside.sum())

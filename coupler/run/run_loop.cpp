@@ -242,8 +242,10 @@ void RunSession::write_frame() {
       final_fields_[f.name].assign(f.values.begin(), f.values.end());
     }
   }
-  run_file_->write_frame(time_s_, step_, dem_.init.particle_count(), fields);
+  // The breaks since the last frame first: the frame's flush then covers them too, so a reader
+  // of a run still going finds /breaks complete up to the newest frame (scripts/windows).
   if (dem_logs_breaks_) write_breaks(reply_);
+  run_file_->write_frame(time_s_, step_, dem_.init.particle_count(), fields);
 }
 
 }  // namespace rockcut::coupler

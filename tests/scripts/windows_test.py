@@ -244,14 +244,53 @@ class WindowsOfACut(unittest.TestCase):
         self.assertGreater(last["breaks_tensile"] + last["breaks_shear"], 0)
         self.assertEqual(sum(w["window_breaks"] for w in rows),
                          last["breaks_tensile"] + last["breaks_shear"])
+        # A run still going: the coupler has written the breaks up to its newest frame only. A
+        # copy without its two newest frames leaves the breaks' columns of the windows after the
+        # frame then newest unknown ('-', NaN in the CSV), and those before it as they were.
+        import h5py
+        import numpy as np
+        going = os.path.join(self.out, "breaks_going")
+        os.makedirs(going, exist_ok=True)
+        shutil.copy(os.path.join(self.out, "run.h5"), going)
+        with h5py.File(os.path.join(going, "run.h5"), "r+") as f:
+            names = sorted(f["frames"].keys())
+            self.assertGreaterEqual(len(names), 3)
+            for name in names[-2:]:
+                del f["frames"][name]
+            covered = float(f["frames"][names[-3]].attrs["time_s"])
+            covered_travel = float(np.interp(covered, f["timeseries/time_s"][()],
+                                             f["timeseries/tool_travel_m"][()]))
+            travel = f["timeseries/tool_travel_m"][()]
+        self.assertGreater(covered, 0.0)
+        path = os.path.join(self.out, "breaks_going.csv")
+        r = windows(going, "--every-mm", "1", "--csv", path)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        cut = read_csv(path)
+        self.assertEqual(len(cut), len(rows))
+        unknown = 0
+        for w, whole in zip(cut, rows):
+            # Known exactly when the window's last sample is no later than the newest frame (the
+            # tool moves at a constant velocity, so later in time is further in travel).
+            last = travel[(travel >= w["from_m"]) & (travel <= w["to_m"])].max()
+            self.assertEqual(math.isnan(w["window_breaks"]), last > covered_travel,
+                             (w["from_m"], w["to_m"], covered_travel))
+            if math.isnan(w["window_breaks"]):
+                unknown += 1
+                self.assertTrue(math.isnan(w["break_ahead_median_m"]))
+            else:
+                self.assertEqual(unknown, 0, "a known window after an unknown one")
+                self.assertEqual(w["window_breaks"], whole["window_breaks"])
+                self.assertEqual(repr(w["break_ahead_median_m"]),
+                                 repr(whole["break_ahead_median_m"]))
+        self.assertGreater(unknown, 0)
+        self.assertLess(unknown, len(cut))
+
         # A copy whose breaks are replaced by three per time-series sample, at the tip's place
         # at that sample plus (3 mm ahead, 1 mm below), (5 mm ahead, 2 mm below) and (7 mm
         # ahead, 1 mm above): every window holds three times its samples, their median lies
         # 5 mm ahead, and two thirds of them below the tip. A sign error in the cutting direction
         # or the height (a third below), or breaks put in the wrong window by their time, moves
         # these by whole millimetres, thirds or samples.
-        import h5py
-        import numpy as np
         placed = os.path.join(self.out, "placed")
         os.makedirs(placed, exist_ok=True)
         shutil.copy(os.path.join(self.out, "run.h5"), placed)

@@ -135,28 +135,26 @@ def read_breaks(path):
     return breaks
 
 
-def cut_direction(tip_x):
-    """+1 when the tool cuts towards +x (its tip's x grows over the run), -1 towards -x."""
-    return 1.0 if tip_x[-1] >= tip_x[0] else -1.0
+TOOL_KEYS = ("time_s", "tool_tip_x_m", "tool_tip_y_m")  # what placing things at the tool needs
+
+
+def relative_to_tool(series, time, x, y):
+    """(tool travel [m], distance ahead of the tip in the cutting direction [m], height above the
+    tip [m]) of points (x, y) [m] at `time` [s] (a scalar or one per point). The tool is taken at
+    that time, linear between samples: it moves at a constant velocity, so that is exact between
+    samples after its start. The cut runs towards +x when the tip's x grows over the run."""
+    import numpy as np
+    t, tip_x, tip_y = (series[k] for k in TOOL_KEYS)
+    direction = 1.0 if tip_x[-1] >= tip_x[0] else -1.0
+    return (np.interp(time, t, series["tool_travel_m"]),
+            direction * (x - np.interp(time, t, tip_x)), y - np.interp(time, t, tip_y))
 
 
 def break_places(series, breaks):
-    """(tool travel [m], distance ahead of the tip [m], height above the tip [m]) of each break,
-    with the tool's travel and tip taken at the break's time (linear between samples; the tool
-    moves at a constant velocity, so that is exact between samples after its start). None when
-    the time series has no tip or time."""
-    import numpy as np
-    need = ("time_s", "tool_tip_x_m", "tool_tip_y_m")
-    if breaks is None or any(k not in series for k in need):
+    """relative_to_tool() of each break at its time; None without breaks or the tool's tip."""
+    if breaks is None or any(k not in series for k in TOOL_KEYS):
         return None
-    t = series["time_s"]
-    tip_x, tip_y = series["tool_tip_x_m"], series["tool_tip_y_m"]
-    direction = cut_direction(tip_x)
-    bt = breaks["time_s"]
-    travel = np.interp(bt, t, series["tool_travel_m"])
-    ahead = direction * (breaks["x_m"] - np.interp(bt, t, tip_x))
-    above = breaks["y_m"] - np.interp(bt, t, tip_y)
-    return travel, ahead, above
+    return relative_to_tool(series, breaks["time_s"], breaks["x_m"], breaks["y_m"])
 
 
 PILE_BEHIND_M, PILE_AHEAD_M = 0.04, 0.01  # the --frames window around the tip [m]
@@ -168,11 +166,8 @@ def pile_rows(path, series):
     import numpy as np
     import plot_cutting
     rows = []
-    t = series.get("time_s")
-    if t is None or "tool_tip_x_m" not in series or "tool_tip_y_m" not in series:
-        fail(f"{path}: --frames needs the time series' time_s, tool_tip_x_m and tool_tip_y_m")
-    tip_x, tip_y = series["tool_tip_x_m"], series["tool_tip_y_m"]
-    direction = cut_direction(tip_x)
+    if any(k not in series for k in TOOL_KEYS):
+        fail(f"{path}: --frames needs the time series' {', '.join(TOOL_KEYS)}")
     fields = ("position", "radius", "damage")
     with h5py.File(path, "r") as f:
         names = sorted(f["frames"].keys()) if "frames" in f else []
@@ -192,15 +187,13 @@ def pile_rows(path, series):
             time = float(g.attrs.get("time_s", math.nan))
             if not math.isfinite(time):
                 continue
-            tx, ty = float(np.interp(time, t, tip_x)), float(np.interp(time, t, tip_y))
-            ahead = direction * (pos[:, 0] - tx)
+            travel, ahead, above_tip = relative_to_tool(series, time, pos[:, 0], pos[:, 1])
+            by_tool = (ahead >= -PILE_BEHIND_M) & (ahead <= PILE_AHEAD_M)
             above = pos[:, 1] > top
-            near = above & (ahead >= -PILE_BEHIND_M) & (ahead <= PILE_AHEAD_M)
-            loose = ((damage >= 1.0 - 1e-9) & (ahead >= -PILE_BEHIND_M) & (ahead <= PILE_AHEAD_M)
-                     & (pos[:, 1] > ty))
+            near = above & by_tool
+            loose = by_tool & (damage >= 1.0 - 1e-9) & (above_tip > 0)
             area = np.pi * r * r
-            rows.append({"time_s": time,
-                         "tool_travel_m": float(np.interp(time, t, series["tool_travel_m"])),
+            rows.append({"time_s": time, "tool_travel_m": float(travel),
                          "above_surface": int(above.sum()),
                          "above_surface_area_m2": float(area[above].sum()),
                          "at_tool": int(near.sum()), "at_tool_area_m2": float(area[near].sum()),
@@ -249,10 +242,24 @@ def mean(values):
     return float(values.mean()) if values.size else math.nan
 
 
+def break_columns(places, start, end, complete):
+    """The window's breaks columns from break_places(): those with a travel in [start, end), or
+    from start on when end is None; NaN when the window is not complete (past the newest frame,
+    whose breaks are not written yet)."""
+    import numpy as np
+    if not complete:
+        return dict.fromkeys(("window_breaks", "break_ahead_median_m",
+                              "break_below_tip_fraction"), math.nan)
+    travel, ahead, above = places
+    inside = (travel >= start) & (True if end is None else travel < end)
+    return {"window_breaks": int(inside.sum()),
+            "break_ahead_median_m": float(np.median(ahead[inside])) if inside.any() else math.nan,
+            "break_below_tip_fraction": mean((above[inside] < 0).astype(float))}
+
+
 def windows(series, every_m, from_m, breaks=None):
     """Rows of window means: dicts of SI values, as documented above. `breaks` (read_breaks)
     adds where the window's bonds broke."""
-    import numpy as np
     travel = series["tool_travel_m"]
     places = break_places(series, breaks)
     last = float(travel.max())
@@ -280,18 +287,9 @@ def windows(series, every_m, from_m, breaks=None):
                         "fluid_cavitated_particles"):
                 if key in series:
                     row[key] = float(series[key][at_end])
-            if places is not None and series["time_s"][at_end] > breaks["covered_to_s"]:
-                # past the newest frame: its breaks are not written yet
-                row["window_breaks"] = math.nan
-                row["break_ahead_median_m"] = math.nan
-                row["break_below_tip_fraction"] = math.nan
-            elif places is not None:
-                b_travel, ahead, above = places
-                inside = (b_travel >= start) & (True if is_last else b_travel < end)
-                row["window_breaks"] = int(inside.sum())
-                row["break_ahead_median_m"] = (float(np.median(ahead[inside])) if inside.any()
-                                               else math.nan)
-                row["break_below_tip_fraction"] = mean((above[inside] < 0).astype(float))
+            if places is not None:
+                complete = series["time_s"][at_end] <= breaks["covered_to_s"]
+                row.update(break_columns(places, start, None if is_last else end, complete))
             rows.append(row)
         if is_last:
             break

@@ -23,7 +23,9 @@
 // pair widened by one cvtps2pd, take the step from 48 to 28 bytes per pair (1.3 times faster;
 // bench/README.md, session 16). Fewer bytes no longer pay: 16-bit coefficients (14 bytes) made the
 // passes 1.3-1.5 times slower, their widening costing more instructions than the bytes they saved
-// (bench/README.md, session 18). The rounding moves each coefficient by at most 2^-24 = 6e-8 of itself; the
+// (bench/README.md, session 18), nor does recomputing c, lam and t in the passes from F_ij alone
+// (8 bytes per pair per pass): twice the instructions gave the coupled fluid 1.3 times the busy
+// time (session 25). The rounding moves each coefficient by at most 2^-24 = 6e-8 of itself; the
 // geometry they come from is itself reused until a particle has moved 0.002 h, an operator error
 // of ~1e-3 (docs/fluid_model.md, "Reusing the geometry").
 //

@@ -38,9 +38,17 @@ def tool_block(scene_text):
     """The scalar fields of the scene's `tool { ... }` block (defaults as in scene.proto)."""
     tool = {"cutting_angle_deg": 60.0, "clearance_angle_deg": 5.0, "cutting_depth_m": 0.02,
             "width_m": 0.02, "face_length_m": 0.0, "steady_after_m": 0.0}
-    m = re.search(r"\btool\s*\{([^{}]*)\}", scene_text or "")
+    m = re.search(r"\btool\s*\{", scene_text or "")
     if m:
-        for key, value in re.findall(r"(\w+)\s*:\s*([-+0-9.eE]+)", m.group(1)):
+        # The block's own fields only: its nested blocks (pressure_nodes { offset_m { x: ... } })
+        # hold fields of other messages.
+        depth, own = 1, []
+        for c in scene_text[m.end():]:
+            depth += (c == "{") - (c == "}")
+            if depth == 0:
+                break
+            own.append(c if depth == 1 and c != "}" else " ")
+        for key, value in re.findall(r"(\w+)\s*:\s*([-+0-9.eE]+)", "".join(own)):
             try:
                 tool[key] = float(value)
             except ValueError:

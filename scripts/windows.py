@@ -29,6 +29,11 @@ prints one row:
                            coupler writes /breaks with each frame, so in a run still going the
                            windows past its newest frame show '-' here.
 
+Under each table one line fits the horizontal force of the steady part (tool travel from
+summary.json's steady_after_m, or while the run has no summary.json the scene's
+dem.tool.steady_after_m, two cutting depths by default): its mean and its least-squares slope
+against travel in kN/m per mm, how far a cut still climbs where summary.json takes its mean.
+
 The means are those of summary.json taken over a window instead of the steady part: with
 --from-mm at `steady_after_m` and --every-mm past the end, the one window gives summary.json's
 force_*_mean_n_per_m and pressure_*_mean_pa (tests/scripts/windows_test.py).
@@ -227,15 +232,54 @@ def run_facts(path):
     m = re.search(r"^\s*seed:\s*([0-9]+)", scene, re.M)  # dem.specimen.seed, the scene's only seed
     if m:
         seed = int(m.group(1))
-    p_hydro = math.nan
+    return depth, seed, summary_value(path, "hydrostatic_pressure_pa", math.nan)
+
+
+def summary_value(path, key, otherwise):
+    """summary.json's `key` beside run.h5 at `path` as a float, or `otherwise` while the run has
+    none (or it lacks the key)."""
     summary = os.path.join(os.path.dirname(path), "summary.json")
-    if os.path.isfile(summary):
-        try:
-            with open(summary) as f:
-                p_hydro = float(json.load(f).get("hydrostatic_pressure_pa", math.nan))
-        except (OSError, ValueError):
-            pass
-    return depth, seed, p_hydro
+    try:
+        with open(summary) as f:
+            return float(json.load(f).get(key, otherwise))
+    except (OSError, ValueError):
+        return otherwise
+
+
+def steady_start(path):
+    """The steady part's start [m of tool travel]: summary.json's steady_after_m, or while the
+    run has none the stored scene's dem.tool.steady_after_m (two cutting depths when 0)."""
+    import h5py
+    import plot_cutting
+    with h5py.File(path, "r") as f:
+        scene = f.attrs.get("scene", "")
+    if isinstance(scene, bytes):
+        scene = scene.decode()
+    return summary_value(path, "steady_after_m", plot_cutting.tool_block(scene)["steady_after_m"])
+
+
+def steady_trend(series, start_m):
+    """(samples, mean Fh [N/m], least-squares slope of Fh against tool travel [N/m per m]) over
+    the samples from start_m of travel on, the steady part of summary.json; slope NaN with fewer
+    than 3 samples or no spread in travel."""
+    import numpy as np
+    picked = series["tool_travel_m"] >= start_m
+    travel, fh = series["tool_travel_m"][picked], -series["tool_force_x_n_per_m"][picked]
+    slope = math.nan
+    if travel.size >= 3 and np.ptp(travel) > 0:
+        dx = travel - travel.mean()
+        slope = float((dx * (fh - fh.mean())).sum() / (dx * dx).sum())
+    return int(picked.sum()), mean(fh), slope
+
+
+def print_trend(trend, start_m, reached_m):
+    samples, fh, slope = trend
+    head = f"steady part from {start_m * 1e3:.1f} mm:"
+    if samples == 0:
+        print(f"{head} not reached (the run reached {reached_m * 1e3:.2f} mm)")
+        return
+    print(f"{head} {samples} samples, Fh mean {fmt(fh, 1e-3, 1)} kN/m, "
+          f"slope {fmt(slope, 1e-6, 2)} kN/m per mm of travel (least squares)")
 
 
 def mean(values):
@@ -520,6 +564,8 @@ def main(argv):
         print(f"{path}: {len(series['tool_travel_m'])} samples, tool travel up to "
               f"{reached_mm:.2f} mm, water depth {depth:g} m, seed {seed}")
         print_table(rows)
+        steady_m = steady_start(path)
+        print_trend(steady_trend(series, steady_m), steady_m, reached_mm * 1e-3)
         if args.frames:
             print()
             print_pile(pile_rows(path, series))

@@ -384,6 +384,44 @@ class WindowsOfACut(unittest.TestCase):
         self.assertIn("damage", r.stderr)
         self.assertIn("output.frame_fields", r.stderr)
 
+    def test_the_steady_force_is_fitted_from_the_steady_start(self):
+        # A copy whose horizontal force is 500 kN/m flat before the steady start (3 mm here) and
+        # 100 kN/m + 20 kN/m per mm of travel from it on: the fit must give 20.00 exactly and the
+        # mean of the line's samples. A fit that took the flat part in, or started anywhere but
+        # at 3 mm, gives another slope (it falls to about 13 with the first 3 mm included).
+        # Printed to 0.01 kN/m per mm: the least squares of an exact line are exact to ~1e-12.
+        import h5py
+        import numpy as np
+        line = os.path.join(self.out, "line")
+        os.makedirs(line, exist_ok=True)
+        for name in ("run.h5", "summary.json"):
+            shutil.copy(os.path.join(self.out, name), line)
+        with h5py.File(os.path.join(line, "run.h5"), "r+") as f:
+            travel = f["timeseries/tool_travel_m"][...]
+            steady = travel >= 0.003
+            fh = np.where(steady, 1e5 + 2e7 * travel, 5e5)
+            f["timeseries/tool_force_x_n_per_m"][...] = -fh
+        want = (f"steady part from 3.0 mm: {int(steady.sum())} samples, "
+                f"Fh mean {fh[steady].mean() * 1e-3:.1f} kN/m, slope 20.00 kN/m per mm")
+        r = windows(line)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn(want, r.stdout)
+        # Without summary.json (a run still going) the start comes from the stored scene, which
+        # holds the run's --set dem.tool.steady_after_m=0.003; without that field, from its
+        # default of two cutting depths (40 mm), which this 6 mm cut has not reached.
+        os.remove(os.path.join(line, "summary.json"))
+        r = windows(line)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn(want, r.stdout)
+        with h5py.File(os.path.join(line, "run.h5"), "r+") as f:
+            scene = f.attrs["scene"]
+            scene = scene.decode() if isinstance(scene, bytes) else scene
+            self.assertIn("steady_after_m", scene)
+            f.attrs["scene"] = "\n".join(s for s in scene.split("\n") if "steady_after_m" not in s)
+        r = windows(line)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("steady part from 40.0 mm: not reached", r.stdout)
+
     def test_bad_input_is_refused_with_the_reason(self):
         missing = os.path.join(self.out, "no_such_run")
         r = windows(missing)

@@ -48,7 +48,9 @@ force_*_mean_n_per_m and pressure_*_mean_pa (tests/scripts/windows_test.py).
                  the shear fraction, the mean chip area, P1-P3 and the cavitated particles.
                  Several runs at one depth (other seeds) are drawn as their mean, a bar from
                  their lowest to their highest value and each run as a faint dot, as
-                 scripts/sweep draws its seeds.
+                 scripts/sweep draws its seeds. A window shorter than --every-mm (a run's
+                 last) is not drawn: for one point per run over the steady part, give its
+                 start and length (a paper-scale cut: --from-mm 40 --every-mm 59).
   --plot-travel PNG
                  draw the window means of each run against tool travel, one line per run
                  (labelled with its depth and seed), in the same panels as --plot: whole cuts
@@ -569,6 +571,12 @@ def main(argv):
         if args.frames:
             print()
             print_pile(pile_rows(path, series))
+    if args.plot and not depth_points(runs, args.every_mm * 1e-3, lambda w: w["fh_n_per_m"]):
+        reached = ", ".join(f"{r.rows[-1]['to_m'] * 1e3:.2f}" for r in runs)
+        fail(f"--plot {args.plot}: no window of full width ({args.every_mm:g} mm from "
+             f"{args.from_mm:g} mm) in a run with a summary.json to draw (the runs reached "
+             f"{reached} mm; a shorter last window is not drawn): give a smaller --every-mm, "
+             f"e.g. the steady part's length for one point per run")
     if args.csv:
         first = ["run", "water_depth_m", "seed"]
         table = [{"run": r.label, "water_depth_m": r.depth, "seed": r.seed, **row}

@@ -436,6 +436,18 @@ class WindowsOfACut(unittest.TestCase):
         r = windows(self.out, "--plot", os.path.join(missing, "depth.png"))
         self.assertEqual(r.returncode, 2)
         self.assertIn("--plot", r.stderr)
+        # A plot with nothing to draw (the one window, 3-6 mm, is shorter than --every-mm) is
+        # refused before the CSV is written, rather than drawn empty.
+        png, path = os.path.join(self.out, "empty.png"), os.path.join(self.out, "empty.csv")
+        r = windows(self.out, "--from-mm", "3", "--every-mm", "1000", "--plot", png, "--csv", path)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no window of full width", r.stderr)
+        self.assertIn("smaller --every-mm", r.stderr)
+        self.assertFalse(os.path.exists(png))
+        self.assertFalse(os.path.exists(path))
+        r = windows(self.out, "--from-mm", "3", "--every-mm", "3", "--plot", png)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(os.path.exists(png))
         self.assertFalse(os.path.exists(missing))
 
 

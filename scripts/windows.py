@@ -222,12 +222,8 @@ def run_facts(path):
     """(water depth [m] and specimen seed from the scene stored in run.h5, hydrostatic pressure
     [Pa] from the run's summary.json or NaN while the run has none). The stored scene is the one
     the run used, with its --set overrides; a field it leaves out has its default."""
-    import h5py
     depth, seed = 0.0, 1  # the scene fields' defaults (docs/scene_reference.md)
-    with h5py.File(path, "r") as f:
-        scene = f.attrs.get("scene", "")
-    if isinstance(scene, bytes):
-        scene = scene.decode()
+    scene = stored_scene(path)
     m = re.search(r"^water_depth_m:\s*([-+0-9.eE]+)", scene, re.M)
     if m:
         depth = float(m.group(1))
@@ -235,6 +231,14 @@ def run_facts(path):
     if m:
         seed = int(m.group(1))
     return depth, seed, summary_value(path, "hydrostatic_pressure_pa", math.nan)
+
+
+def stored_scene(path):
+    """The scene text stored in run.h5 (its root attribute `scene`), "" if none."""
+    import h5py
+    with h5py.File(path, "r") as f:
+        scene = f.attrs.get("scene", "")
+    return scene.decode() if isinstance(scene, bytes) else scene
 
 
 def summary_value(path, key, otherwise):
@@ -251,13 +255,9 @@ def summary_value(path, key, otherwise):
 def steady_start(path):
     """The steady part's start [m of tool travel]: summary.json's steady_after_m, or while the
     run has none the stored scene's dem.tool.steady_after_m (two cutting depths when 0)."""
-    import h5py
     import plot_cutting
-    with h5py.File(path, "r") as f:
-        scene = f.attrs.get("scene", "")
-    if isinstance(scene, bytes):
-        scene = scene.decode()
-    return summary_value(path, "steady_after_m", plot_cutting.tool_block(scene)["steady_after_m"])
+    scene_start = plot_cutting.tool_block(stored_scene(path))["steady_after_m"]
+    return summary_value(path, "steady_after_m", scene_start)
 
 
 def steady_trend(series, start_m):

@@ -21,6 +21,9 @@ import time
 os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")  # the run may still be writing run.h5
 
 import h5py  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import scene_text as scene_text_module  # noqa: E402
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
@@ -38,17 +41,9 @@ def tool_block(scene_text):
     """The scalar fields of the scene's `tool { ... }` block (defaults as in scene.proto)."""
     tool = {"cutting_angle_deg": 60.0, "clearance_angle_deg": 5.0, "cutting_depth_m": 0.02,
             "width_m": 0.02, "face_length_m": 0.0, "steady_after_m": 0.0}
-    m = re.search(r"\btool\s*\{", scene_text or "")
-    if m:
-        # The block's own fields only: its nested blocks (pressure_nodes { offset_m { x: ... } })
-        # hold fields of other messages.
-        depth, own = 1, []
-        for c in scene_text[m.end():]:
-            depth += (c == "{") - (c == "}")
-            if depth == 0:
-                break
-            own.append(c if depth == 1 and c != "}" else " ")
-        for key, value in re.findall(r"(\w+)\s*:\s*([-+0-9.eE]+)", "".join(own)):
+    own = scene_text_module.own_fields(scene_text, "tool")
+    if own is not None:
+        for key, value in re.findall(r"(\w+)\s*:\s*([-+0-9.eE]+)", own):
             try:
                 tool[key] = float(value)
             except ValueError:
@@ -92,13 +87,19 @@ def read_frame(g, fields):
     return values
 
 
+def stored_scene(f):
+    """The scene text stored in an open run.h5 (its root attribute `scene`), "" if none: the
+    scene the run used, with its --set overrides."""
+    scene = f.attrs.get("scene", "")
+    return scene.decode() if isinstance(scene, bytes) else str(scene)
+
+
 def load(h5):
     """Reads run.h5. A run still writing it may leave the newest objects unreadable, so each part
     is read on its own, and frames from the newest back until one reads whole."""
     d = RunData()
     with h5py.File(h5, "r") as f:
-        scene = f.attrs.get("scene", "")
-        d.scene = scene.decode() if isinstance(scene, bytes) else str(scene)
+        d.scene = stored_scene(f)
         d.ts = read_timeseries(f)
         names = sorted(f["frames"].keys()) if "frames" in f else []
         for name in names:

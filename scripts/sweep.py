@@ -55,6 +55,7 @@ sys.path.insert(0, HERE)
 
 # The figures, and the helpers the run loop shares with them.
 from sweep_figures import Sweep, as_number, draw, note, run_dir  # noqa: E402
+import scene_text  # noqa: E402
 
 # The scene's defaults (proto/rockcut/scene.proto), used when a summary lacks
 # hydrostatic_pressure_pa: p_hydro = p_atm + rho_w g water_depth_m.
@@ -166,21 +167,9 @@ def dem_threads(case, sets):
             text = re.sub(r"#[^\n]*", "", f.read())  # drop comments
     except OSError:
         return 1
-    m = re.search(r"^\s*dem\s*:?\s*\{", text, re.M)
-    if not m:
+    body = scene_text.own_fields(text, "dem")  # without specimen { ... }, tool { ... }, ...
+    if body is None:
         return 1
-    # The dem block up to its closing brace, then its nested blocks (specimen, tool, ...) removed
-    # so that only dem's own fields remain.
-    depth, end = 1, m.end()
-    while depth and end < len(text):
-        depth += {"{": 1, "}": -1}.get(text[end], 0)
-        end += 1
-    body = text[m.end():end - 1]
-    while True:
-        flat = re.sub(r"\{[^{}]*\}", "", body)
-        if flat == body:
-            break
-        body = flat
     t = re.search(r"\bthreads\s*:\s*(\d+)", body)
     return int(t.group(1)) if t else 1
 

@@ -234,11 +234,11 @@ def run_facts(path):
 
 
 def stored_scene(path):
-    """The scene text stored in run.h5 (its root attribute `scene`), "" if none."""
+    """The scene text stored in run.h5 at `path` (plot_cutting.stored_scene)."""
     import h5py
+    import plot_cutting
     with h5py.File(path, "r") as f:
-        scene = f.attrs.get("scene", "")
-    return scene.decode() if isinstance(scene, bytes) else scene
+        return plot_cutting.stored_scene(f)
 
 
 def summary_value(path, key, otherwise):

@@ -1,0 +1,220 @@
+#!/usr/bin/python3
+"""Several water-depth sweeps side by side: where shear breaks take over, and the forces.
+
+  scripts/compare_sweeps DIR[=LABEL] DIR[=LABEL] ... [--plot PNG] [--csv CSV]
+
+Each DIR is a folder of scripts/sweep (DIR/water_depth_m=<v>[/seed=<S>]/summary.json), e.g. the same
+scene swept with different bond strengths (`scripts/sweep ... --out DIR --set path=value`). LABEL
+names it in the table and the figure (default: the folder's name). For each sweep it prints, per
+water depth, the mean over the seeds (and their range) of
+  the horizontal tool force [kN/m], the shear fraction of the broken bonds, the mean chip area,
+and the **transition**: the depth at which the mean shear fraction first rises through 0.5, i.e.
+where shear breaks become the majority (paper section 5: tensile breaks dominate in shallow water,
+shear breaks in deep water, the transition at about 300 m). Between the two depths that bracket
+it the fraction is interpolated linearly in log p_hydro, the axis of the figures. A sweep whose shear fraction is
+above 0.5 at its shallowest depth, or below it at every depth, has no crossing; that is said.
+
+  --plot PNG   two panels against p_hydro: the shear fraction (mean, range bars, each seed as a
+               dot) and the horizontal force, one colour per sweep
+  --csv CSV    one row per sweep and depth: label, water_depth_m, hydrostatic_pressure_pa, runs,
+               the means and ranges above, and the sweep's transition depth and pressure
+
+Exit status 0 when drawn, 2 on bad input (nothing written).
+"""
+import argparse
+import csv
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+from sweep import collect, seeds_in, sorted_values, values_in  # noqa: E402
+from sweep_figures import Sweep, as_number, plot_series, set_x_scale  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402  (sweep_figures has set the Agg backend)
+import numpy as np  # noqa: E402
+
+DEPTH = "water_depth_m"
+MAJORITY = 0.5  # shear breaks are the majority above this shear fraction
+
+
+def shear_fraction(row):
+    """Shear breaks over all breaks of one run (NaN for a run without breaks or a summary)."""
+    t, s = as_number(row.get("breaks_tensile")), as_number(row.get("breaks_shear"))
+    if t is None or s is None or t + s == 0:
+        return np.nan
+    return s / (t + s)
+
+
+def transition(depth, pressure, fraction):
+    """(depth, p_hydro, how) where the mean shear fraction first rises through MAJORITY; depth and
+    p_hydro are None when there is no crossing, and `how` says why. Between the two bracketing
+    depths the fraction is taken as linear in log p_hydro, the axis of the paper's figures and of
+    --plot (so the crossing lies on the drawn line); the depth follows from p_hydro, which is
+    linear in depth."""
+    ok = np.isfinite(fraction)
+    d, p, f = depth[ok], pressure[ok], fraction[ok]
+    if len(f) == 0:
+        return None, None, "no run with breaks"
+    if f[0] > MAJORITY:
+        return None, None, f"shear majority already at {d[0]:g} m ({f[0]:.2f})"
+    for i in range(1, len(f)):
+        if f[i - 1] <= MAJORITY < f[i]:
+            w = (MAJORITY - f[i - 1]) / (f[i] - f[i - 1])
+            p_x = p[i - 1] * (p[i] / p[i - 1]) ** w
+            d_x = d[i - 1] + (p_x - p[i - 1]) / (p[i] - p[i - 1]) * (d[i] - d[i - 1])
+            return d_x, p_x, f"between {d[i - 1]:g} and {d[i]:g} m"
+    return None, None, f"tensile majority at every depth (at most {f.max():.2f})"
+
+
+class Compared:
+    """One sweep: its label, its Sweep and the columns the table and figure use."""
+
+    def __init__(self, label, out):
+        self.label, self.out = label, out
+        name, values = values_in(out)
+        if name != DEPTH:
+            raise ValueError(f"{out} varies {name}, not {DEPTH}")
+        rows = collect(out, name, sorted_values(values), seeds_in(out, name, values))
+        rows = [r for r in rows if "force_horizontal_mean_n_per_m" in r]  # runs with a summary
+        if not rows:
+            raise ValueError(f"{out} holds no run with a summary.json")
+        self.sweep = s = Sweep(out, name, rows)
+        self.depth = s.x
+        self.runs = [len(g) for g in s.groups]
+        self.pressure = s.column("hydrostatic_pressure_pa")
+        self.force = s.stats("force_horizontal_mean_n_per_m")
+        self.fraction = s.stats(shear_fraction)
+        self.chip_area = s.stats("chip_area_mean_m2")
+        self.transition = transition(self.depth, self.pressure, self.fraction[0])
+
+
+def parse_sweep(text):
+    """'DIR=LABEL' or 'DIR' -> (DIR, LABEL). A folder name may hold '=' itself (out/ts=2.6e4): the
+    whole text is a folder first, else the label follows the last '='."""
+    if os.path.isdir(text) or "=" not in text:
+        out, label = text, ""
+    else:
+        out, _, label = text.rpartition("=")
+    return out, label or os.path.basename(os.path.normpath(out))
+
+
+def fmt_range(stats, i, scale, digits):
+    mean, lo, hi = (a[i] * scale for a in stats)
+    if not np.isfinite(mean):
+        return "-"
+    if lo == hi:
+        return f"{mean:.{digits}f}"
+    return f"{mean:.{digits}f} ({lo:.{digits}f}-{hi:.{digits}f})"
+
+
+def print_tables(sweeps):
+    for c in sweeps:
+        print(f"{c.label}  ({c.out})")
+        print(f"  {'depth [m]':>9} {'p_hydro [MPa]':>13} {'runs':>4}  {'Fh [kN/m]':<20} "
+              f"{'shear fraction':<20} chip area [mm²]")
+        for i in range(len(c.depth)):
+            area = fmt_range(c.chip_area, i, 1e6, 1) if c.chip_area else "-"
+            print(f"  {c.depth[i]:>9g} {c.pressure[i] / 1e6:>13.2f} {c.runs[i]:>4}  "
+                  f"{fmt_range(c.force, i, 1e-3, 0):<20} {fmt_range(c.fraction, i, 1, 2):<20} "
+                  f"{area}")
+        d, p, how = c.transition
+        if d is None:
+            print(f"  shear breaks the majority: no crossing ({how})")
+        else:
+            print(f"  shear breaks the majority from {d:.0f} m (p_hydro {p / 1e6:.2f} MPa; "
+                  f"{how}, linear in log p_hydro)")
+        print()
+
+
+def write_csv(path, sweeps):
+    columns = ["label", DEPTH, "hydrostatic_pressure_pa", "runs",
+               "force_horizontal_mean_n_per_m", "force_horizontal_min_n_per_m",
+               "force_horizontal_max_n_per_m", "shear_fraction", "shear_fraction_min",
+               "shear_fraction_max", "chip_area_mean_m2", "transition_depth_m",
+               "transition_pressure_pa"]
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        for c in sweeps:
+            d, p, _ = c.transition
+            for i in range(len(c.depth)):
+                area = c.chip_area[0][i] if c.chip_area else np.nan
+                w.writerow([c.label, f"{c.depth[i]:g}", c.pressure[i], c.runs[i],
+                            c.force[0][i], c.force[1][i], c.force[2][i],
+                            c.fraction[0][i], c.fraction[1][i], c.fraction[2][i], area,
+                            "" if d is None else d, "" if p is None else p])
+    print(f"wrote {path}")
+
+
+def plot(path, sweeps):
+    fig, (ax_f, ax_h) = plt.subplots(2, 1, figsize=(7.5, 7.5), dpi=100, sharex=True)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    all_p = np.concatenate([c.pressure for c in sweeps]) / 1e6
+    for k, c in enumerate(sweeps):
+        colour = colours[k % len(colours)]
+        x = c.pressure / 1e6
+        for ax, stats, scale, key in ((ax_f, c.fraction, 1.0, shear_fraction),
+                                      (ax_h, c.force, 1e-3, "force_horizontal_mean_n_per_m")):
+            mean, lo, hi = (a * scale for a in stats)
+            plot_series(ax, x, mean, "o-", color=colour, label=c.label)
+            ok = np.isfinite(mean)
+            ax.errorbar(x[ok], mean[ok], yerr=[mean[ok] - lo[ok], hi[ok] - mean[ok]], fmt="none",
+                        ecolor=colour, elinewidth=1, capsize=3)
+            px, py = c.sweep.points(key, x)
+            plot_series(ax, px, py * scale, ".", color=colour, alpha=0.3)
+        d, p, _ = c.transition
+        if p is not None:
+            ax_f.plot([p / 1e6], [MAJORITY], "x", color=colour, ms=10, mew=2)
+    ax_f.axhline(MAJORITY, color="k", lw=0.6, ls="--")
+    ax_f.set_ylim(0, 1)
+    ax_f.set_ylabel("shear fraction of the broken bonds [-]")
+    ax_f.set_title("Where shear breaks become the majority (x: the interpolated crossing)\n"
+                   "mean over the seeds; bars: their range, dots: each seed", fontsize=10)
+    ax_f.legend(fontsize=8)
+    ax_h.set_ylabel("mean horizontal tool force [kN/m]")
+    ax_h.set_xlabel("hydrostatic pressure [MPa]")
+    ax_h.set_ylim(bottom=0)
+    for ax in (ax_f, ax_h):
+        set_x_scale(ax, all_p)
+        ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    print(f"wrote {path}")
+
+
+def main(argv):
+    p = argparse.ArgumentParser(prog="scripts/compare_sweeps", description=__doc__.split("\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter,
+                                epilog="\n".join(__doc__.split("\n")[1:]))
+    p.add_argument("sweeps", nargs="+", metavar="DIR[=LABEL]")
+    p.add_argument("--plot", metavar="PNG")
+    p.add_argument("--csv", metavar="CSV")
+    args = p.parse_args(argv)
+    sweeps = []
+    for text in args.sweeps:
+        out, label = parse_sweep(text)
+        if not os.path.isdir(out):
+            print(f"compare_sweeps: {out}: no such folder", file=sys.stderr)
+            return 2
+        try:
+            sweeps.append(Compared(label, out))
+        except (ValueError, SystemExit) as e:
+            print(f"compare_sweeps: {e}", file=sys.stderr)
+            return 2
+    labels = [c.label for c in sweeps]
+    if len(set(labels)) != len(labels):
+        print(f"compare_sweeps: two sweeps share a label ({', '.join(labels)}): give DIR=LABEL",
+              file=sys.stderr)
+        return 2
+    print_tables(sweeps)
+    if args.csv:
+        write_csv(args.csv, sweeps)
+    if args.plot:
+        plot(args.plot, sweeps)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,121 @@
+#!/usr/bin/python3
+"""scripts/compare_sweeps, run as a user would, on sweep folders written here with chosen
+summaries (no simulation: the script only reads summary.json files). Checks the means and ranges
+over the seeds, the crossing of the shear fraction through 0.5 against a value worked out by hand,
+the sweeps without a crossing, and that bad input is refused before anything is written.
+
+  tests/scripts/compare_sweeps_test.py --coupler build/bin/coupler --tmp DIR
+"""
+import argparse
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+COMPARE = os.path.join(ROOT, "scripts", "compare_sweeps")
+ARGS = None
+
+
+def p_of(depth):
+    """A made-up p_hydro, linear in depth like the real one (1e5 Pa + 1e4 Pa/m): 0 m -> 1e5 Pa,
+    150 m -> 1.6e6 Pa, a factor 16, so the log-p interpolation has a round answer."""
+    return 1e5 + 1e4 * depth
+
+
+def write_sweep(out, runs, name="water_depth_m"):
+    """runs: {depth: [(tensile, shear, Fh), ...] one per seed}."""
+    shutil.rmtree(out, ignore_errors=True)
+    for depth, seeds in runs.items():
+        for seed, (tensile, shear, fh) in enumerate(seeds, start=1):
+            d = os.path.join(out, f"{name}={depth}", f"seed={seed}")
+            os.makedirs(d)
+            with open(os.path.join(d, "summary.json"), "w") as f:
+                json.dump({"breaks_tensile": tensile, "breaks_shear": shear,
+                           "force_horizontal_mean_n_per_m": fh, "chip_area_mean_m2": 2e-5,
+                           "hydrostatic_pressure_pa": p_of(float(depth))}, f)
+
+
+def run(*args):
+    return subprocess.run([COMPARE, *args], capture_output=True, text=True, timeout=120)
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+class CompareSweeps(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = os.path.join(ARGS.tmp, "compare_sweeps")
+        shutil.rmtree(cls.dir, ignore_errors=True)
+        os.makedirs(cls.dir)
+        # Crosses: the mean fraction is 0.25 at 0 m (seeds 0.2 and 0.3) and 0.75 at 150 m, so
+        # halfway in log p: p = sqrt(1e5 * 1.6e6) = 4e5 Pa, i.e. 30 m. Linear in depth would
+        # give 75 m, so the test tells the two apart.
+        cls.crossing = os.path.join(cls.dir, "crossing")
+        write_sweep(cls.crossing, {"0": [(80, 20, 1e5), (70, 30, 3e5)],
+                                   "150": [(25, 75, 4e5), (25, 75, 4e5)]})
+        cls.tensile = os.path.join(cls.dir, "ts=tensile")  # '=' in the folder's name
+        write_sweep(cls.tensile, {"0": [(90, 10, 1e5)], "150": [(60, 40, 2e5)]})
+        cls.shear = os.path.join(cls.dir, "shear")
+        write_sweep(cls.shear, {"0": [(40, 60, 1e5)], "150": [(20, 80, 2e5)]})
+
+    def test_the_crossing_means_and_ranges_are_tabled(self):
+        csv_path = os.path.join(self.dir, "compare.csv")
+        png = os.path.join(self.dir, "compare.png")
+        r = run(f"{self.crossing}=A", self.tensile, f"{self.shear}=C", "--csv", csv_path,
+                "--plot", png)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        rows = read_csv(csv_path)
+        self.assertEqual([(x["label"], x["water_depth_m"], x["runs"]) for x in rows],
+                         [("A", "0", "2"), ("A", "150", "2"), ("ts=tensile", "0", "1"),
+                          ("ts=tensile", "150", "1"), ("C", "0", "1"), ("C", "150", "1")])
+        a0 = rows[0]
+        # Mean and range over the two seeds at 0 m.
+        self.assertAlmostEqual(float(a0["shear_fraction"]), 0.25, places=12)
+        self.assertAlmostEqual(float(a0["shear_fraction_min"]), 0.2, places=12)
+        self.assertAlmostEqual(float(a0["shear_fraction_max"]), 0.3, places=12)
+        self.assertAlmostEqual(float(a0["force_horizontal_mean_n_per_m"]), 2e5, places=6)
+        self.assertAlmostEqual(float(a0["force_horizontal_min_n_per_m"]), 1e5, places=6)
+        self.assertAlmostEqual(float(a0["force_horizontal_max_n_per_m"]), 3e5, places=6)
+        # The crossing, worked out above.
+        self.assertAlmostEqual(float(a0["transition_pressure_pa"]), 4e5, delta=1e-6)
+        self.assertAlmostEqual(float(a0["transition_depth_m"]), 30.0, places=9)
+        self.assertIn("shear breaks the majority from 30 m (p_hydro 0.40 MPa", r.stdout)
+        # No crossing either way: said, and left empty in the CSV.
+        self.assertIn("tensile majority at every depth (at most 0.40)", r.stdout)
+        self.assertIn("shear majority already at 0 m (0.60)", r.stdout)
+        self.assertEqual([x["transition_depth_m"] for x in rows[2:]], ["", "", "", ""])
+        self.assertGreater(os.path.getsize(png), 10000)
+
+    def test_bad_input_is_refused_before_anything_is_written(self):
+        other = os.path.join(self.dir, "other")
+        write_sweep(other, {"0.5": [(1, 1, 1.0)]}, name="dem.tool.velocity_m_s")
+        empty = os.path.join(self.dir, "empty")
+        shutil.rmtree(empty, ignore_errors=True)
+        os.makedirs(os.path.join(empty, "water_depth_m=0"))
+        csv_path = os.path.join(self.dir, "refused.csv")
+        cases = [([self.crossing, other], "varies dem.tool.velocity_m_s, not water_depth_m"),
+                 ([self.crossing, empty], "holds no run with a summary.json"),
+                 ([self.crossing, os.path.join(self.dir, "nowhere")], "no such folder"),
+                 ([f"{self.crossing}=X", f"{self.shear}=X"], "two sweeps share a label")]
+        for sweeps, reason in cases:
+            r = run(*sweeps, "--csv", csv_path, "--plot", csv_path + ".png")
+            self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+            self.assertIn(reason, r.stderr)
+            self.assertFalse(os.path.exists(csv_path))
+            self.assertFalse(os.path.exists(csv_path + ".png"))
+
+
+if __name__ == "__main__":
+    p = argparse.ArgumentParser()
+    p.add_argument("--coupler", required=True)
+    p.add_argument("--tmp", required=True)
+    ARGS, rest = p.parse_known_args()
+    os.makedirs(ARGS.tmp, exist_ok=True)
+    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)

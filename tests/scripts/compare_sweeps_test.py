@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """scripts/compare_sweeps, run as a user would, on sweep folders written here with chosen
 summaries (no simulation: the script only reads summary.json files). Checks the means and ranges
-over the seeds, the crossing of the shear fraction through 0.5 against a value worked out by hand,
+over the seeds, the crossings of the shear fraction through 0.5 and through the middle of its
+change against values worked out by hand,
 the sweeps without a crossing, and that bad input is refused before anything is written.
 
   tests/scripts/compare_sweeps_test.py --coupler build/bin/coupler --tmp DIR
@@ -64,17 +65,20 @@ class CompareSweeps(unittest.TestCase):
         write_sweep(cls.tensile, {"0": [(90, 10, 1e5)], "150": [(60, 40, 2e5)]})
         cls.shear = os.path.join(cls.dir, "shear")
         write_sweep(cls.shear, {"0": [(40, 60, 1e5)], "150": [(20, 80, 2e5)]})
+        cls.falling = os.path.join(cls.dir, "falling")
+        write_sweep(cls.falling, {"0": [(40, 60, 1e5)], "150": [(60, 40, 2e5)]})
 
     def test_the_crossing_means_and_ranges_are_tabled(self):
         csv_path = os.path.join(self.dir, "compare.csv")
         png = os.path.join(self.dir, "compare.png")
-        r = run(f"{self.crossing}=A", self.tensile, f"{self.shear}=C", "--csv", csv_path,
-                "--plot", png)
+        r = run(f"{self.crossing}=A", self.tensile, f"{self.shear}=C", self.falling,
+                "--csv", csv_path, "--plot", png)
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         rows = read_csv(csv_path)
         self.assertEqual([(x["label"], x["water_depth_m"], x["runs"]) for x in rows],
                          [("A", "0", "2"), ("A", "150", "2"), ("ts=tensile", "0", "1"),
-                          ("ts=tensile", "150", "1"), ("C", "0", "1"), ("C", "150", "1")])
+                          ("ts=tensile", "150", "1"), ("C", "0", "1"), ("C", "150", "1"),
+                          ("falling", "0", "1"), ("falling", "150", "1")])
         a0 = rows[0]
         # Mean and range over the two seeds at 0 m.
         self.assertAlmostEqual(float(a0["shear_fraction"]), 0.25, places=12)
@@ -83,14 +87,25 @@ class CompareSweeps(unittest.TestCase):
         self.assertAlmostEqual(float(a0["force_horizontal_mean_n_per_m"]), 2e5, places=6)
         self.assertAlmostEqual(float(a0["force_horizontal_min_n_per_m"]), 1e5, places=6)
         self.assertAlmostEqual(float(a0["force_horizontal_max_n_per_m"]), 3e5, places=6)
-        # The crossing, worked out above.
-        self.assertAlmostEqual(float(a0["transition_pressure_pa"]), 4e5, delta=1e-6)
-        self.assertAlmostEqual(float(a0["transition_depth_m"]), 30.0, places=9)
-        self.assertIn("shear breaks the majority from 30 m (p_hydro 0.40 MPa", r.stdout)
-        # No crossing either way: said, and left empty in the CSV.
-        self.assertIn("tensile majority at every depth (at most 0.40)", r.stdout)
-        self.assertIn("shear majority already at 0 m (0.60)", r.stdout)
-        self.assertEqual([x["transition_depth_m"] for x in rows[2:]], ["", "", "", ""])
+        # The crossing of 0.5, worked out above; here also the half-way level (0.25 + 0.75) / 2.
+        self.assertAlmostEqual(float(a0["majority_pressure_pa"]), 4e5, delta=1e-6)
+        self.assertAlmostEqual(float(a0["majority_depth_m"]), 30.0, places=9)
+        self.assertAlmostEqual(float(a0["half_way_fraction"]), 0.5, places=12)
+        self.assertAlmostEqual(float(a0["half_way_depth_m"]), 30.0, places=9)
+        self.assertIn("shear breaks the majority (shear fraction 0.50): from 30 m, p_hydro 0.40 MPa",
+                      r.stdout)
+        # No majority either way: said, and left empty in the CSV; the half-way crossing is there
+        # all the same (0.1 -> 0.4: level 0.25, again half-way in log p, 30 m; 0.6 -> 0.8: 0.7).
+        self.assertIn("below 0.50 at every depth (at most 0.40)", r.stdout)
+        self.assertIn("above 0.50 already at 0 m (0.60)", r.stdout)
+        self.assertEqual([x["majority_depth_m"] for x in rows[2:6]], ["", "", "", ""])
+        for row, level in ((rows[2], 0.25), (rows[4], 0.7)):
+            self.assertAlmostEqual(float(row["half_way_fraction"]), level, places=12)
+            self.assertAlmostEqual(float(row["half_way_depth_m"]), 30.0, places=9)
+        # A fraction that falls with depth has no half-way crossing.
+        self.assertIn("half-way: no crossing (the shear fraction does not rise with depth)",
+                      r.stdout)
+        self.assertEqual(rows[6]["half_way_depth_m"], "")
         self.assertGreater(os.path.getsize(png), 10000)
 
     def test_bad_input_is_refused_before_anything_is_written(self):

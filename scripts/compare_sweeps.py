@@ -35,20 +35,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 from sweep import collect, seeds_in, sorted_values, values_in  # noqa: E402
-from sweep_figures import Sweep, as_number, plot_series, set_x_scale  # noqa: E402
+from sweep_figures import Sweep, plot_series, set_x_scale, shear_fraction  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402  (sweep_figures has set the Agg backend)
 import numpy as np  # noqa: E402
 
 DEPTH = "water_depth_m"
 MAJORITY = 0.5  # shear breaks are the majority above this shear fraction
-
-
-def shear_fraction(row):
-    """Shear breaks over all breaks of one run (NaN for a run without breaks or a summary)."""
-    t, s = as_number(row.get("breaks_tensile")), as_number(row.get("breaks_shear"))
-    if t is None or s is None or t + s == 0:
-        return np.nan
-    return s / (t + s)
 
 
 def crossing(depth, pressure, fraction, level):
@@ -90,9 +82,12 @@ class Compared:
         if name != DEPTH:
             raise ValueError(f"{out} varies {name}, not {DEPTH}")
         rows = collect(out, name, sorted_values(values), seeds_in(out, name, values))
-        rows = [r for r in rows if "force_horizontal_mean_n_per_m" in r]  # runs with a summary
-        if not rows:
+        done = [r for r in rows if "force_horizontal_mean_n_per_m" in r]  # runs with a summary
+        if not done:
             raise ValueError(f"{out} holds no run with a summary.json")
+        self.left_out = [f"{r[name]} m" + (f" seed {r['seed']}" if "seed" in r else "")
+                         for r in rows if r not in done]
+        rows = done
         self.sweep = s = Sweep(out, name, rows)
         self.depth = s.x
         self.runs = [len(g) for g in s.groups]
@@ -130,6 +125,8 @@ def fmt_range(stats, i, scale, digits):
 def print_tables(sweeps):
     for c in sweeps:
         print(f"{c.label}  ({c.out})")
+        if c.left_out:
+            print(f"  left out, no summary.json (failed or not run): {', '.join(c.left_out)}")
         print(f"  {'depth [m]':>9} {'p_hydro [MPa]':>13} {'runs':>4}  {'Fh [kN/m]':<20} "
               f"{'shear fraction':<20} chip area [mm²]")
         for i in range(len(c.depth)):

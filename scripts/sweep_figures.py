@@ -272,6 +272,14 @@ def fig_pressure_p2_p3(s):
                 "mean excess pore pressure p - p_hydro [MPa]", 1e-6, against_pressure=True)
 
 
+def shear_fraction(row):
+    """Shear breaks over all breaks of one run (NaN for a run without breaks or a summary)."""
+    t, sh = as_number(row.get("breaks_tensile")), as_number(row.get("breaks_shear"))
+    if t is None or sh is None or t + sh == 0:
+        return np.nan
+    return sh / (t + sh)
+
+
 def fig_breaks_fraction(s):
     filename = "breaks_fraction.png"
     remove_stale(s, filename)
@@ -279,18 +287,9 @@ def fig_breaks_fraction(s):
     if len(cols) < 2:
         return
     total = cols["breaks_tensile"] + cols["breaks_shear"]  # mean over the runs of a value
-
-    def fraction(mode):  # per run; a run without breaks has no fraction (NaN)
-        def f(r):
-            t, sh = as_number(r.get("breaks_tensile")), as_number(r.get("breaks_shear"))
-            if t is None or sh is None or t + sh == 0:
-                return np.nan
-            return (t if mode == "tensile" else sh) / (t + sh)
-        return f
-
     fig, ax = plt.subplots(figsize=(7, 4.5), dpi=100)
-    plot_key(ax, s, s.x, fraction("tensile"), 1.0, "o-", "tab:blue", "tensile")
-    plot_key(ax, s, s.x, fraction("shear"), 1.0, "s-", "tab:red", "shear")
+    plot_key(ax, s, s.x, lambda r: 1.0 - shear_fraction(r), 1.0, "o-", "tab:blue", "tensile")
+    plot_key(ax, s, s.x, shear_fraction, 1.0, "s-", "tab:red", "shear")
     for xi, n in zip(s.x, total):
         if np.isfinite(n):
             ax.annotate(f"{int(n)}", (xi, 1.0), textcoords="offset points", xytext=(0, 3),

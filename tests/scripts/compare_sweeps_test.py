@@ -65,6 +65,11 @@ class CompareSweeps(unittest.TestCase):
         write_sweep(cls.tensile, {"0": [(90, 10, 1e5)], "150": [(60, 40, 2e5)]})
         cls.shear = os.path.join(cls.dir, "shear")
         write_sweep(cls.shear, {"0": [(40, 60, 1e5)], "150": [(20, 80, 2e5)]})
+        # Runs that failed or never ran (a seed folder without summary.json) are left out and
+        # named.
+        cls.partial = os.path.join(cls.dir, "partial")
+        write_sweep(cls.partial, {"0": [(90, 10, 1e5)], "150": [(60, 40, 2e5)]})
+        os.makedirs(os.path.join(cls.partial, "water_depth_m=150", "seed=9"))
         cls.falling = os.path.join(cls.dir, "falling")
         write_sweep(cls.falling, {"0": [(40, 60, 1e5)], "150": [(60, 40, 2e5)]})
 
@@ -107,6 +112,16 @@ class CompareSweeps(unittest.TestCase):
                       r.stdout)
         self.assertEqual(rows[6]["half_way_depth_m"], "")
         self.assertGreater(os.path.getsize(png), 10000)
+
+    def test_runs_without_a_summary_are_left_out_and_named(self):
+        csv_path = os.path.join(self.dir, "partial.csv")
+        r = run(self.partial, "--csv", csv_path)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("left out, no summary.json (failed or not run): 0 m seed 9, 150 m seed 9",
+                      r.stdout)
+        rows = read_csv(csv_path)
+        self.assertEqual([(x["water_depth_m"], x["runs"]) for x in rows], [("0", "1"), ("150", "1")])
+        self.assertAlmostEqual(float(rows[1]["shear_fraction"]), 0.4, places=12)
 
     def test_bad_input_is_refused_before_anything_is_written(self):
         other = os.path.join(self.dir, "other")

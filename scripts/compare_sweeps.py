@@ -35,7 +35,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 from sweep import collect, seeds_in, sorted_values, values_in  # noqa: E402
-from sweep_figures import Sweep, plot_series, set_x_scale, shear_fraction  # noqa: E402
+from sweep_figures import Sweep, plot_key, set_x_scale, shear_fraction  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402  (sweep_figures has set the Agg backend)
 import numpy as np  # noqa: E402
 
@@ -175,15 +175,8 @@ def plot(path, sweeps):
     for k, c in enumerate(sweeps):
         colour = colours[k % len(colours)]
         x = c.pressure / 1e6
-        for ax, stats, scale, key in ((ax_f, c.fraction, 1.0, shear_fraction),
-                                      (ax_h, c.force, 1e-3, "force_horizontal_mean_n_per_m")):
-            mean, lo, hi = (a * scale for a in stats)
-            plot_series(ax, x, mean, "o-", color=colour, label=c.label)
-            ok = np.isfinite(mean)
-            ax.errorbar(x[ok], mean[ok], yerr=[mean[ok] - lo[ok], hi[ok] - mean[ok]], fmt="none",
-                        ecolor=colour, elinewidth=1, capsize=3)
-            px, py = c.sweep.points(key, x)
-            plot_series(ax, px, py * scale, ".", color=colour, alpha=0.3)
+        plot_key(ax_f, c.sweep, x, shear_fraction, 1.0, "o-", colour, c.label)
+        plot_key(ax_h, c.sweep, x, "force_horizontal_mean_n_per_m", 1e-3, "o-", colour, c.label)
         for (_, p, _), level, marker in ((c.majority, MAJORITY, "x"),
                                          (c.half_way, c.half_level, "D")):
             if p is not None:

@@ -7,14 +7,13 @@ the sweeps without a crossing, and that bad input is refused before anything is 
 
   tests/scripts/compare_sweeps_test.py --coupler build/bin/coupler --tmp DIR
 """
-import argparse
-import csv
 import json
 import os
 import shutil
 import subprocess
-import sys
 import unittest
+
+import harness  # tests/scripts/harness.py: the command line and CSV reading
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 COMPARE = os.path.join(ROOT, "scripts", "compare_sweeps")
@@ -42,11 +41,6 @@ def write_sweep(out, runs, name="water_depth_m"):
 
 def run(*args):
     return subprocess.run([COMPARE, *args], capture_output=True, text=True, timeout=120)
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 class CompareSweeps(unittest.TestCase):
@@ -79,7 +73,7 @@ class CompareSweeps(unittest.TestCase):
         r = run(f"{self.crossing}=A", self.tensile, f"{self.shear}=C", self.falling,
                 "--csv", csv_path, "--plot", png)
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
-        rows = read_csv(csv_path)
+        rows = harness.read_csv(csv_path)
         self.assertEqual([(x["label"], x["water_depth_m"], x["runs"]) for x in rows],
                          [("A", "0", "2"), ("A", "150", "2"), ("ts=tensile", "0", "1"),
                           ("ts=tensile", "150", "1"), ("C", "0", "1"), ("C", "150", "1"),
@@ -119,7 +113,7 @@ class CompareSweeps(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         self.assertIn("left out, no summary.json (failed or not run): 0 m seed 9, 150 m seed 9",
                       r.stdout)
-        rows = read_csv(csv_path)
+        rows = harness.read_csv(csv_path)
         self.assertEqual([(x["water_depth_m"], x["runs"]) for x in rows], [("0", "1"), ("150", "1")])
         self.assertAlmostEqual(float(rows[1]["shear_fraction"]), 0.4, places=12)
 
@@ -143,9 +137,5 @@ class CompareSweeps(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    p = argparse.ArgumentParser()
-    p.add_argument("--coupler", required=True)
-    p.add_argument("--tmp", required=True)
-    ARGS, rest = p.parse_known_args()
-    os.makedirs(ARGS.tmp, exist_ok=True)
-    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
+    ARGS, rest = harness.arguments()
+    harness.run(rest)

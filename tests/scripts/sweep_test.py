@@ -6,23 +6,17 @@ that --plot-only finds the seeds again from the folders.
 
   tests/scripts/sweep_test.py --coupler build/bin/coupler --tmp DIR
 """
-import argparse
-import csv
 import os
 import shutil
 import subprocess
-import sys
 import unittest
+
+import harness  # tests/scripts/harness.py: the command line and CSV reading
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SWEEP = os.path.join(ROOT, "scripts", "sweep")
 CASE = os.path.join(ROOT, "cases", "cutting", "dry_reduced.pbtxt")
 ARGS = None
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 class SweepWithSeeds(unittest.TestCase):
@@ -46,7 +40,7 @@ class SweepWithSeeds(unittest.TestCase):
                     self.assertIn(f"dem.specimen.seed={s}", f.readline())
 
     def test_sweep_csv_has_one_row_per_run_with_its_seed(self):
-        rows = read_csv(os.path.join(self.out, "sweep.csv"))
+        rows = harness.read_csv(os.path.join(self.out, "sweep.csv"))
         self.assertEqual([(r["dem.tool.velocity_m_s"], r["seed"]) for r in rows],
                          [("0.5", "3"), ("0.5", "5"), ("1", "3"), ("1", "5")])
         # Different specimens: the seeds really reached the runs (disc counts differ).
@@ -54,8 +48,8 @@ class SweepWithSeeds(unittest.TestCase):
         self.assertNotEqual(counts["3"], counts["5"])
 
     def test_sweep_mean_csv_is_the_mean_min_and_max_of_the_seeds(self):
-        runs = read_csv(os.path.join(self.out, "sweep.csv"))
-        means = read_csv(os.path.join(self.out, "sweep_mean.csv"))
+        runs = harness.read_csv(os.path.join(self.out, "sweep.csv"))
+        means = harness.read_csv(os.path.join(self.out, "sweep_mean.csv"))
         self.assertEqual([m["dem.tool.velocity_m_s"] for m in means], ["0.5", "1"])
         for m in means:
             mine = [r for r in runs if r["dem.tool.velocity_m_s"] == m["dem.tool.velocity_m_s"]]
@@ -79,8 +73,8 @@ class SweepWithSeeds(unittest.TestCase):
         r = subprocess.run([SWEEP, "--plot-only", "--out", self.out], capture_output=True,
                            text=True, timeout=120)
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
-        self.assertEqual(len(read_csv(os.path.join(self.out, "sweep_mean.csv"))), 2)
-        self.assertEqual(len(read_csv(os.path.join(self.out, "sweep.csv"))), 4)
+        self.assertEqual(len(harness.read_csv(os.path.join(self.out, "sweep_mean.csv"))), 2)
+        self.assertEqual(len(harness.read_csv(os.path.join(self.out, "sweep.csv"))), 4)
 
     def test_bad_seeds_are_refused_before_anything_runs(self):
         out = os.path.join(ARGS.tmp, "sweep_bad_seeds")
@@ -94,9 +88,5 @@ class SweepWithSeeds(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    p = argparse.ArgumentParser()
-    p.add_argument("--coupler", required=True)
-    p.add_argument("--tmp", required=True)
-    ARGS, rest = p.parse_known_args()
-    os.makedirs(ARGS.tmp, exist_ok=True)
-    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
+    ARGS, rest = harness.arguments()
+    harness.run(rest)

@@ -6,7 +6,6 @@ and bad input.
 
   tests/scripts/windows_test.py --coupler build/bin/coupler --tmp DIR
 """
-import argparse
 import csv
 import json
 import math
@@ -15,6 +14,8 @@ import shutil
 import subprocess
 import sys
 import unittest
+
+import harness  # tests/scripts/harness.py: the command line and CSV reading
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 WINDOWS = os.path.join(ROOT, "scripts", "windows")
@@ -452,9 +453,5 @@ class WindowsOfACut(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    p = argparse.ArgumentParser()
-    p.add_argument("--coupler", required=True)
-    p.add_argument("--tmp", required=True)
-    ARGS, rest = p.parse_known_args()
-    os.makedirs(ARGS.tmp, exist_ok=True)
-    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
+    ARGS, rest = harness.arguments()
+    harness.run(rest)

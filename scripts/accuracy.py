@@ -33,7 +33,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 SCENE = os.path.join(ROOT, "cases", "cutting", "saturated_reduced.pbtxt")
 BASE = ["time.end_time_s=0.025", "dem.tool.steady_after_m=0.01", "output.frame_interval_s=0"]
-R_MIN, R_MAX, T_N, T_S, H = 0.0008, 0.0016, 3.2e4, 2.6e4, 0.006  # the scene's (set G x 4)
+R_MIN, R_MAX, T_N, T_S, H = 0.0008, 0.0016, 2.66e4, 2.66e4, 0.006  # the scene's (set H x 4)
 MEAN_DIAMETER = R_MIN + R_MAX
 KEYS = ["force_horizontal_mean_n_per_m", "force_vertical_mean_n_per_m", "breaks",
         "pressure_p1_mean_pa", "pressure_p2_mean_pa", "pressure_p3_mean_pa"]

@@ -31,9 +31,18 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import scene_text  # noqa: E402  (scripts/scene_text.py)
 SCENE = os.path.join(ROOT, "cases", "cutting", "saturated_reduced.pbtxt")
 BASE = ["time.end_time_s=0.025", "dem.tool.steady_after_m=0.01", "output.frame_interval_s=0"]
-R_MIN, R_MAX, T_N, T_S, H = 0.0008, 0.0016, 2.66e4, 2.66e4, 0.006  # the scene's (set H x 4)
+with open(SCENE) as _f:
+    _SCENE_TEXT = _f.read()
+# The scene's own radii, bond strengths and smoothing length, which the size ladder scales.
+R_MIN, R_MAX = (scene_text.scalar_fields(_SCENE_TEXT, "specimen")[k]
+                for k in ("radius_min_m", "radius_max_m"))
+T_N, T_S = (scene_text.scalar_fields(_SCENE_TEXT, "bonds")[k]
+            for k in ("tensile_strength_n_per_m", "shear_strength_n_per_m"))
+H = scene_text.scalar_fields(_SCENE_TEXT, "fluid")["smoothing_length_m"]
 MEAN_DIAMETER = R_MIN + R_MAX
 KEYS = ["force_horizontal_mean_n_per_m", "force_vertical_mean_n_per_m", "breaks",
         "pressure_p1_mean_pa", "pressure_p2_mean_pa", "pressure_p3_mean_pa"]

@@ -14,7 +14,6 @@ Exit status: 0 if every OUT was plotted, 1 otherwise, 2 without arguments.
 import json
 import math
 import os
-import re
 import sys
 import time
 
@@ -41,13 +40,7 @@ def tool_block(scene_text):
     """The scalar fields of the scene's `tool { ... }` block (defaults as in scene.proto)."""
     tool = {"cutting_angle_deg": 60.0, "clearance_angle_deg": 5.0, "cutting_depth_m": 0.02,
             "width_m": 0.02, "face_length_m": 0.0, "steady_after_m": 0.0}
-    own = scene_text_module.own_fields(scene_text, "tool")
-    if own is not None:
-        for key, value in re.findall(r"(\w+)\s*:\s*([-+0-9.eE]+)", own):
-            try:
-                tool[key] = float(value)
-            except ValueError:
-                pass
+    tool.update(scene_text_module.scalar_fields(scene_text, "tool"))
     if tool["face_length_m"] <= 0:
         tool["face_length_m"] = 3.0 * tool["cutting_depth_m"]
     if tool["steady_after_m"] <= 0:

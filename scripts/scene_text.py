@@ -17,3 +17,18 @@ def own_fields(text, name):
             break
         own.append(c if depth == 1 and c != "}" else " ")
     return "".join(own)
+
+
+def without_comments(text):
+    """`text` with its `# ...` comments removed (the scene files hold no '#' inside strings)."""
+    return re.sub(r"#[^\n]*", "", text or "")
+
+
+def scalar_fields(text, name):
+    """The numeric fields of the first `name { ... }` block of `text` as {field: float}, its nested
+    blocks left out; {} without such a block. Comments are removed here."""
+    own = own_fields(without_comments(text), name)
+    fields = {}
+    for key, value in re.findall(r"(\w+)\s*:\s*([-+]?[0-9.]+(?:[eE][-+]?[0-9]+)?)\b", own or ""):
+        fields[key] = float(value)
+    return fields

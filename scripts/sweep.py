@@ -43,7 +43,6 @@ import argparse
 import csv
 import json
 import os
-import re
 import signal
 import subprocess
 import sys
@@ -164,14 +163,11 @@ def dem_threads(case, sets):
             return int(value)
     try:
         with open(case) as f:
-            text = re.sub(r"#[^\n]*", "", f.read())  # drop comments
+            text = f.read()
     except OSError:
         return 1
-    body = scene_text.own_fields(text, "dem")  # without specimen { ... }, tool { ... }, ...
-    if body is None:
-        return 1
-    t = re.search(r"\bthreads\s*:\s*(\d+)", body)
-    return int(t.group(1)) if t else 1
+    threads = scene_text.scalar_fields(text, "dem").get("threads")  # dem's own, not specimen's
+    return int(threads) if threads else 1
 
 
 # ---------------------------------------------------------------------------------------------

@@ -15,8 +15,9 @@ struct LadderPoint {
   double value;
   double force_error;   ///< relative error of the mean horizontal force
 };
-// Four seeds (1-4) and 14 mm of steady cut, with the calibrated rock set G (the default until session 27), session 10: the seed
-// scatter of each mean is 4-18 % (docs/accuracy.md), so errors below about 15 % are not resolved.
+// Four seeds (1-4) and 14 mm of steady cut, with the calibrated rock set G (the default until
+// session 27), session 10: the seed scatter of each mean is 4-18 % (docs/accuracy.md), so errors
+// below about 15 % are not resolved.
 constexpr LadderPoint kDtSafety[] = {{0.4, 0.32}, {0.2, 0.07}, {0.1, 0.02}, {0.05, 0.14},
                                      {0.025, 0.0}};
 // N dt / the stiffness limit. The coarsest is the largest N the limit allows (N = 14 in the

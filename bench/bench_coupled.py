@@ -2,6 +2,7 @@
 """Coupled cutting step: wall time over ipc and inproc, and where it goes.
 
   bench/bench_coupled.py [--scale reduced|paper|both] [--repeat 3] [--coupler PATH]
+                         [--set PATH=VALUE ...]
 
 Runs cases/cutting/saturated_reduced.pbtxt (647 discs) and cases/cutting/saturated.pbtxt (55,177
 discs) for a short stretch of the cut (the tool in the rock) with each transport and prints, per
@@ -14,7 +15,8 @@ run, the median over --repeat runs of:
   rest [%]           wall - dem - fluid: transport, the coupler's output and waiting (negative when
                      the fluid's work hides behind the DEM's contact forces, which overlap it)
 and the ratio of the ipc to the inproc wall time. Targets (issue 5): ipc / inproc <= 1.10, fluid
-<= 20 % of the coupled wall time at the coupler's N.
+<= 20 % of the coupled wall time at the coupler's N. --set overrides a scene field in every run
+after the stretch's own settings, e.g. `--set coupling.interval=10` for the share at another N.
 """
 import argparse
 import json
@@ -55,13 +57,16 @@ def main():
     ap.add_argument("--scale", choices=["reduced", "paper", "both"], default="both")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--coupler", default=os.path.join(ROOT, "build", "bin", "coupler"))
+    ap.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
+                    help="scene override for every run (repeatable)")
     args = ap.parse_args()
     scales = ["reduced", "paper"] if args.scale == "both" else [args.scale]
     print("%-8s %-7s %6s %5s %9s %9s %7s %8s %7s %7s" %
           ("scale", "trans", "parts", "N", "wall_s", "p-steps/s", "dem%", "dem_ovl%", "fluid%",
            "rest%"))
     for scale in scales:
-        scene, sets = SCALES[scale]
+        scene, stretch = SCALES[scale]
+        sets = stretch + args.set
         walls = {}
         for transport in ["inproc", "ipc"]:
             rows = [run(args.coupler, scene, sets, transport) for _ in range(args.repeat)]

@@ -21,7 +21,7 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
     {"rockcut.Coupling.interval",
      "DEM steps per fluid step (N). Leave it out to let the coupler choose it from the stability limits; a value above a limit is refused."},
     {"rockcut.Coupling.interval_fraction",
-     "When `interval` is left out: N is this fraction of the largest interval the fluid limits allow (at least 1). The work-precision study (docs/accuracy.md, calibrated rock, seeds 1-4) found the mean tool force of the reduced saturated cut 108 % above its unlagged (N = 1) value at the largest stable N (14) and 36 % at a quarter of it (N = 3), at 0.4 times the wall time of N = 1. 1: the fastest stable run. For the force to better than about a third, set `interval: 1`."},
+     "When `interval` is left out: N is this fraction of the largest interval the fluid limits allow (at least 1). The work-precision study (docs/accuracy.md, set H, seeds 1-8) found the mean tool force of the reduced saturated cut at 0 m 19 % above its unlagged (N = 1) value at a quarter of the largest stable N (N = 3, not resolved from zero), at 0.43 times the wall time of N = 1, and 34-36 % above it at N = 7 and 10; at 2000 m no N moved it beyond the seeds' scatter, and the shear fraction of the breaks is the same at every N. 1: the fastest stable run. For the shallow force to better than about a fifth, set `interval: 1`."},
     {"rockcut.Coupling.timeout_s",
      "A module that does not answer for this long is declared stalled and the run stops. A DEM request for many steps gets this plus the time its work takes at 1e6 particle-steps/s."},
     {"rockcut.Dem.bonds",

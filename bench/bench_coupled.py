@@ -14,12 +14,17 @@ run, the median over --repeat runs of:
                      its contact forces, computed while the fluid steps
   rest [%]           wall - dem - fluid: transport, the coupler's output and waiting (negative when
                      the fluid's work hides behind the DEM's contact forces, which overlap it)
+  fl/step            the fluid's busy time per exchange in units of the rest of the wall per DEM
+                     step, c = N fluid / (1 - fluid) (see fluid_cost_in_dem_steps)
 and the ratio of the ipc to the inproc wall time. Targets (issue 5): ipc / inproc <= 1.10, fluid
-<= 20 % of the coupled wall time at the coupler's N. --set overrides a scene field in every run
-after the stretch's own settings, e.g. `--set coupling.interval=10` for the share at another N.
+<= 20 % of the coupled wall time at the coupler's N. For the fluid target each scale also prints
+the smallest N that meets it and how much faster the fluid's step would have to be at this N.
+--set overrides a scene field in every run after the stretch's own settings, e.g.
+`--set coupling.interval=10` for the share at another N.
 """
 import argparse
 import json
+import math
 import os
 import statistics
 import subprocess
@@ -38,6 +43,32 @@ SCALES = {
               ["time.end_time_s=0.0003", "output.frame_interval_s=0", "dem.tool.start_gap_m=0",
                "output.timeseries_every_steps=2000"]),
 }
+
+
+def fluid_cost_in_dem_steps(interval, fluid_share):
+    """The fluid's cost per exchange, c, in units of the rest of the wall per DEM step.
+
+    An exchange covers N DEM steps. If the wall per exchange is N d (the DEM, transport and
+    coupler: everything but the fluid's busy time) plus c d (the fluid's busy time), the fluid's
+    share is s = c / (N + c), so c = N s / (1 - s). c measures the fluid's step against the DEM's
+    independently of N: the session-28 shares at N = 3, 5, 7 and 10 (bench/README.md) all give
+    c = 2.3-2.4 inproc.
+    """
+    if not 0 <= fluid_share < 1:
+        raise ValueError("fluid share %r is not in [0, 1)" % fluid_share)
+    return interval * fluid_share / (1.0 - fluid_share)
+
+
+def interval_for_fluid_share(cost, share=0.2):
+    """The smallest whole N at which a fluid of cost c (DEM steps per exchange) is at most share
+    of the wall: c / (N + c) <= share, i.e. N >= c (1 - share) / share (4 c for 20 %)."""
+    return max(1, math.ceil(cost * (1.0 - share) / share - 1e-9))
+
+
+def fluid_speedup_for_share(cost, interval, share=0.2):
+    """How many times faster the fluid's step must be for its share to be at most share at this
+    N: the cost must fall to N share / (1 - share) (N / 4 for 20 %). Below 1 it already is."""
+    return cost / (interval * share / (1.0 - share))
 
 
 def run(coupler, scene, sets, transport):
@@ -61,13 +92,14 @@ def main():
                     help="scene override for every run (repeatable)")
     args = ap.parse_args()
     scales = ["reduced", "paper"] if args.scale == "both" else [args.scale]
-    print("%-8s %-7s %6s %5s %9s %9s %7s %8s %7s %7s" %
+    print("%-8s %-7s %6s %5s %9s %9s %7s %8s %7s %7s %7s" %
           ("scale", "trans", "parts", "N", "wall_s", "p-steps/s", "dem%", "dem_ovl%", "fluid%",
-           "rest%"))
+           "rest%", "fl/step"))
     for scale in scales:
         scene, stretch = SCALES[scale]
         sets = stretch + args.set
         walls = {}
+        costs = {}
         for transport in ["inproc", "ipc"]:
             rows = [run(args.coupler, scene, sets, transport) for _ in range(args.repeat)]
             wall = statistics.median(r["wall_time_s"] for r in rows)
@@ -77,11 +109,19 @@ def main():
             rate = statistics.median(r["particle_steps_per_s"] for r in rows)
             walls[transport] = wall
             r = rows[0]
-            print("%-8s %-7s %6d %5d %9.3f %9.3g %6.1f%% %7.1f%% %6.1f%% %6.1f%%" %
-                  (scale, transport, r["particles"], r["coupling_interval"], wall, rate,
-                   100 * dem, 100 * ovl, 100 * fluid, 100 * (1 - dem - fluid)))
+            interval = r["coupling_interval"]
+            costs[transport] = fluid_cost_in_dem_steps(interval, fluid)
+            print("%-8s %-7s %6d %5d %9.3f %9.3g %6.1f%% %7.1f%% %6.1f%% %6.1f%% %7.2f" %
+                  (scale, transport, r["particles"], interval, wall, rate,
+                   100 * dem, 100 * ovl, 100 * fluid, 100 * (1 - dem - fluid),
+                   costs[transport]))
         print("%-8s ipc / inproc wall time: %.3f (target <= 1.10)" %
               (scale, walls["ipc"] / walls["inproc"]))
+        for transport in ["inproc", "ipc"]:
+            c = costs[transport]
+            print("%-8s %s: fluid <= 20 %% needs N >= %d, or at N = %d a fluid step %.2f times "
+                  "as fast" % (scale, transport, interval_for_fluid_share(c), interval,
+                               fluid_speedup_for_share(c, interval)))
 
 
 if __name__ == "__main__":

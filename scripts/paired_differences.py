@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Paired differences over specimen seeds in a scripts/sweep CSV (docs/accuracy.md, "The coupling
-interval over eight seeds").
+interval over sixteen seeds").
 
   scripts/paired_differences SWEEP_CSV [--key force_horizontal_mean_n_per_m] [--scale 1e-3]
 

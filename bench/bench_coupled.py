@@ -45,6 +45,11 @@ SCALES = {
 }
 
 
+def _odds(share):
+    """share / (1 - share): a fluid of cost c at interval N has share s where c = N _odds(s)."""
+    return share / (1.0 - share)
+
+
 def fluid_cost_in_dem_steps(interval, fluid_share):
     """The fluid's cost per exchange, c, in units of the rest of the wall per DEM step.
 
@@ -56,19 +61,19 @@ def fluid_cost_in_dem_steps(interval, fluid_share):
     """
     if not 0 <= fluid_share < 1:
         raise ValueError("fluid share %r is not in [0, 1)" % fluid_share)
-    return interval * fluid_share / (1.0 - fluid_share)
+    return interval * _odds(fluid_share)
 
 
 def interval_for_fluid_share(cost, share=0.2):
     """The smallest whole N at which a fluid of cost c (DEM steps per exchange) is at most share
     of the wall: c / (N + c) <= share, i.e. N >= c (1 - share) / share (4 c for 20 %)."""
-    return max(1, math.ceil(cost * (1.0 - share) / share - 1e-9))
+    return max(1, math.ceil(cost / _odds(share) - 1e-9))
 
 
 def fluid_speedup_for_share(cost, interval, share=0.2):
     """How many times faster the fluid's step must be for its share to be at most share at this
     N: the cost must fall to N share / (1 - share) (N / 4 for 20 %). Below 1 it already is."""
-    return cost / (interval * share / (1.0 - share))
+    return cost / (interval * _odds(share))
 
 
 def run(coupler, scene, sets, transport):

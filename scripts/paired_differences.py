@@ -29,19 +29,21 @@ def table(rows, key, scale=1.0):
     for r in rows:
         if r.get("exit_code", "0") == "0" and r.get(key) not in (None, ""):
             by_value[float(r[param])][r["seed"]] = r
-    out = []
+    if not by_value:
+        return []
     values = sorted(by_value)
+    ref = by_value[values[0]]
+    ref_mean = mean([float(r[key]) * scale for r in ref.values()])
+    out = []
     for v in values:
         runs = by_value[v]
-        ref = by_value[values[0]]
         x = [float(r[key]) * scale for r in runs.values()]
         diffs = [(float(runs[s][key]) - float(ref[s][key])) * scale for s in runs if s in ref]
         shear = [float(r["breaks_shear"]) / (float(r["breaks_shear"]) + float(r["breaks_tensile"]))
                  for r in runs.values()]
-        ref_mean = mean([float(r[key]) * scale for r in ref.values()])
+        d = mean(diffs)
         out.append((v, len(runs), mean([float(r["wall_time_s"]) for r in runs.values()]), mean(x),
-                    mean(diffs), sem(diffs), mean(diffs) / ref_mean if ref_mean else float("nan"),
-                    mean(shear)))
+                    d, sem(diffs), d / ref_mean if ref_mean else float("nan"), mean(shear)))
     return out
 
 

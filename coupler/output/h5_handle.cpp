@@ -89,4 +89,35 @@ void write_scalar_attribute(hid_t loc, const std::string& name, hid_t mem_type, 
   check(attr.close(), ctx, "cannot close attribute '" + name + "'");
 }
 
+std::string read_string_attribute(hid_t loc, const std::string& name, const std::string& ctx) {
+  Handle attr = attribute(H5Aopen(loc, name.c_str(), H5P_DEFAULT), ctx,
+                          "cannot open attribute '" + name + "'");
+  Handle file_type = datatype(H5Aget_type(attr.get()), ctx, "cannot get the type of '" + name + "'");
+  if (H5Tget_class(file_type.get()) != H5T_STRING) {
+    fail(ctx, "attribute '" + name + "' is not a string");
+  }
+  if (H5Tis_variable_str(file_type.get()) > 0) {
+    Handle type = utf8_string_type(ctx);
+    char* data = nullptr;
+    check(H5Aread(attr.get(), type.get(), &data), ctx, "cannot read attribute '" + name + "'");
+    std::string value = data ? data : "";
+    Handle space = dataspace(H5Aget_space(attr.get()), ctx, "cannot get a dataspace");
+    H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, &data);
+    return value;
+  }
+  const std::size_t size = H5Tget_size(file_type.get());
+  std::string value(size, '\0');
+  check(H5Aread(attr.get(), file_type.get(), value.data()), ctx,
+        "cannot read attribute '" + name + "'");
+  value.resize(std::strlen(value.c_str()));
+  return value;
+}
+
+void read_scalar_attribute(hid_t loc, const std::string& name, hid_t mem_type, void* value,
+                           const std::string& ctx) {
+  Handle attr = attribute(H5Aopen(loc, name.c_str(), H5P_DEFAULT), ctx,
+                          "cannot open attribute '" + name + "'");
+  check(H5Aread(attr.get(), mem_type, value), ctx, "cannot read attribute '" + name + "'");
+}
+
 }  // namespace rockcut::coupler::h5

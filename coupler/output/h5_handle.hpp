@@ -101,5 +101,10 @@ void write_string_attribute(hid_t loc, const std::string& name, const std::strin
 /// Writes a scalar attribute of a native numeric type (H5T_NATIVE_DOUBLE, H5T_NATIVE_UINT64...).
 void write_scalar_attribute(hid_t loc, const std::string& name, hid_t mem_type, hid_t file_type,
                             const void* value, const std::string& ctx);
+/// Reads a scalar string attribute (variable or fixed length) of `loc`.
+std::string read_string_attribute(hid_t loc, const std::string& name, const std::string& ctx);
+/// Reads a scalar numeric attribute of `loc` into `value`, converted to `mem_type`.
+void read_scalar_attribute(hid_t loc, const std::string& name, hid_t mem_type, void* value,
+                           const std::string& ctx);
 
 }  // namespace rockcut::coupler::h5

@@ -9,6 +9,7 @@
 #include "core/force_buffers.hpp"
 #include "core/interaction_law.hpp"
 #include "core/particles.hpp"
+#include "state/state_archive.hpp"
 
 namespace rockcut::dem {
 
@@ -45,6 +46,9 @@ class BondSet {
   /// True if i and j are bonded; needs partners() to be current (refresh_partners()).
   bool bonded(std::uint32_t i, std::uint32_t j) const;
   void refresh_partners(std::size_t n);
+  /// Checkpoint (core/dem_state.cpp): the bonds, their springs and broken flags.
+  void save_state(state::StateArchive& a) const;
+  void load_state(const state::StateArchive& a, std::size_t particles);
 
   // Test access.
   /// Normal force of bond k at the current positions (compression positive) [N/m].

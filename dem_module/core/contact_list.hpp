@@ -10,6 +10,7 @@
 #include "core/force_buffers.hpp"
 #include "core/interaction_law.hpp"
 #include "core/particles.hpp"
+#include "state/state_archive.hpp"
 
 namespace rockcut::dem {
 
@@ -31,6 +32,9 @@ class ContactList {
   double strain_energy(const Particles& p, const ContactLaw& law) const;
 
   std::size_t size() const { return i_.size(); }
+  /// Checkpoint (core/dem_state.cpp): the pairs in list order and their tangential history.
+  void save_state(state::StateArchive& a) const;
+  void load_state(const state::StateArchive& a, std::size_t particles);
   std::uint32_t first(std::size_t k) const { return i_[k]; }
   std::uint32_t second(std::size_t k) const { return j_[k]; }
 

@@ -88,6 +88,11 @@ class DemSystem {
   bool in_split_step() const { return in_split_step_; }
   bool internal_forces_current() const { return internal_forces_current_; }
   std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
+  /// Checkpoint (core/dem_state.cpp): everything that decides the next bit, between two steps.
+  void save_state(state::StateArchive& a) const;
+  /// Restores a saved state into a system built from the same scene; throws state::StateError
+  /// if it does not fit (another particle count, wall or clamp layout).
+  void load_state(const state::StateArchive& a);
 
   /// Kinetic energy, translation and rotation [J/m].
   double kinetic_energy() const;

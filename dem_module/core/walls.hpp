@@ -10,6 +10,7 @@
 #include "core/force_buffers.hpp"
 #include "core/interaction_law.hpp"
 #include "core/particles.hpp"
+#include "state/state_archive.hpp"
 
 namespace rockcut::dem {
 
@@ -56,6 +57,9 @@ class WallSet {
   double strain_energy(const Particles& p, const ContactLaw& law) const;
   /// Largest overlap of a disc with a wall as a ratio of its radius; `particle` gets the disc.
   double largest_overlap_ratio(const Particles& p, std::int64_t& particle) const;
+  /// Checkpoint (core/dem_state.cpp): the bodies' motion and forces and the listed pairs.
+  void save_state(state::StateArchive& a) const;
+  void load_state(const state::StateArchive& a, std::size_t particles);
 
  private:
   /// Overlap of listed pair k (disc radius minus its distance to the moved segment) [m].

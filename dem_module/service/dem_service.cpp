@@ -7,6 +7,7 @@
 #include "core/thread_advice.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
+#include "wire/state_message.hpp"
 
 namespace rockcut::dem {
 
@@ -41,6 +42,8 @@ void DemService::handle(const wire::Message& request, wire::Message& reply) {
     case wire::Envelope::kApplyForces: return apply_forces(request, reply);
     case wire::Envelope::kSubscribe: return subscribe(e.subscribe(), reply);
     case wire::Envelope::kFrameRequest: return frame(e.frame_request(), reply);
+    case wire::Envelope::kSaveState: return save_state(reply);
+    case wire::Envelope::kLoadState: return load_state(request, reply);
     default:
       throw std::invalid_argument("dem_module: unexpected request (envelope body " +
                                   std::to_string(e.body_case()) + ")");
@@ -316,6 +319,42 @@ void DemService::add_field(std::string_view field, wire::Message& reply) {
     return;
   }
   throw std::invalid_argument("dem_module cannot provide the field '" + std::string(field) + "'");
+}
+
+void DemService::save_state(wire::Message& reply) {
+  const DemSystem& s = system();
+  if (!stopped_by_.empty()) {
+    throw std::runtime_error("dem_module: stopped by the " + stopped_by_ +
+                             " guard; its state is not worth a checkpoint");
+  }
+  if (s.in_split_step()) {
+    throw std::runtime_error("dem_module: SaveState inside a split step (ApplyForces first)");
+  }
+  state::StateArchive archive;
+  s.save_state(archive);
+  // The service's own part: what "displacement" is measured from, the breaks already handed
+  // out in frames, and the step the guards last ran on.
+  archive.put("position_at_exchange_m", position_at_exchange_, 2);
+  archive.put_scalar("breaks_sent", static_cast<double>(breaks_sent_));
+  archive.put_scalar("guard_checked_step", static_cast<double>(guard_checked_step_));
+  wire::State* body = reply.envelope.mutable_state();
+  body->set_module(name() + " " + version());
+  wire::put_state(archive, *body, reply);
+}
+
+void DemService::load_state(const wire::Message& request, wire::Message& reply) {
+  DemSystem& s = system();
+  const state::StateArchive archive =
+      wire::take_state(request.envelope.load_state().state(), request);
+  s.load_state(archive);
+  archive.get("position_at_exchange_m", position_at_exchange_, s.particles().position.size());
+  breaks_sent_ = archive.scalar_as<std::size_t>("breaks_sent");
+  if (breaks_sent_ > s.breaks().size()) {
+    throw state::StateError("state member \"breaks_sent\" exceeds the breaks saved");
+  }
+  guard_checked_step_ = archive.scalar_as<std::uint64_t>("guard_checked_step");
+  split_dt_s_ = 0.0;
+  reply.envelope.mutable_ack();
 }
 
 namespace {

@@ -31,6 +31,9 @@ class DemService final : public wire::ModuleHandler {
   void frame(const wire::FrameRequest& request, wire::Message& reply);
   void add_field(std::string_view field, wire::Message& reply);
   void report(wire::Message& reply);
+  /// Checkpoint and restart: the DEM's state (core/dem_state.cpp) and the service's own.
+  void save_state(wire::Message& reply);
+  void load_state(const wire::Message& request, wire::Message& reply);
   void report_rig(google::protobuf::Map<std::string, double>& out);
   /// Runs the runtime guards; a trip goes into the report and stops further Advances.
   void check_guards_into(double kinetic_energy_j, wire::StepReport& report);

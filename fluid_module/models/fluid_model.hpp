@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "state/state_archive.hpp"
+
 namespace rockcut::fluid {
 
 /// Largest stable step of a model's own integrator.
@@ -69,6 +71,12 @@ class FluidModel {
   /// Named scalars of the last step for the time series (FluidResult.scalars; the coupler
   /// prefixes them with "fluid_"). Once per step, never per particle.
   virtual void scalars(std::vector<std::pair<std::string, double>>& out) const { out.clear(); }
+  /// Checkpoint: everything that decides the bits of the next steps and that initialise() does
+  /// not rebuild from the scene and the static data. Called between steps.
+  virtual void save_state(state::StateArchive& archive) const = 0;
+  /// Restart: takes a saved state back after initialise(); throws state::StateError if it does
+  /// not fit this model and these particles.
+  virtual void load_state(const state::StateArchive& archive) = 0;
 };
 
 }  // namespace rockcut::fluid

@@ -39,6 +39,10 @@ class PrescribedGradient final : public FluidModel {
     throw std::invalid_argument("prescribed_gradient provides no field '" + field + "'");
   }
 
+  // A field fixed by the scene: nothing evolves.
+  void save_state(state::StateArchive&) const override {}
+  void load_state(const state::StateArchive&) override {}
+
  private:
   double grad_x_pa_m_;
   double grad_y_pa_m_;

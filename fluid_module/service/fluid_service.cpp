@@ -10,6 +10,7 @@
 #include "sp/format.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
+#include "wire/state_message.hpp"
 
 namespace rockcut::fluid {
 
@@ -34,6 +35,8 @@ void FluidService::handle(const wire::Message& request, wire::Message& reply) {
     case wire::Envelope::kInit: return init(request, reply);
     case wire::Envelope::kFluidStep: return step(request, reply);
     case wire::Envelope::kFrameRequest: return frame(e.frame_request(), reply);
+    case wire::Envelope::kSaveState: return save_state(reply);
+    case wire::Envelope::kLoadState: return load_state(request, reply);
     default:
       throw std::invalid_argument("fluid_module: unexpected request (envelope body " +
                                   std::to_string(e.body_case()) + ")");
@@ -161,6 +164,34 @@ void FluidService::frame(const wire::FrameRequest& request, wire::Message& reply
     m.output(field, output_);
     reply.add_array(field, output_, output_.size() == 2 * particle_count_ ? 2 : 1);
   }
+}
+
+void FluidService::save_state(wire::Message& reply) {
+  const FluidModel& m = model();
+  state::StateArchive archive;
+  m.save_state(archive);
+  // The service's own part: the last forces handed out (a frame may ask for them) and the
+  // positions the next displacement is measured from.
+  archive.put("service_force_n_per_m", force_, 2);
+  archive.put("service_previous_position_m", previous_position_, 2);
+  wire::State* body = reply.envelope.mutable_state();
+  body->set_module(name() + " " + version());
+  archive.put_text("model", m.name());
+  wire::put_state(archive, *body, reply);
+}
+
+void FluidService::load_state(const wire::Message& request, wire::Message& reply) {
+  FluidModel& m = model();
+  const state::StateArchive archive =
+      wire::take_state(request.envelope.load_state().state(), request);
+  if (archive.text("model") != m.name()) {
+    throw state::StateError("the state is of fluid model \"" + archive.text("model") +
+                            "\", this run's is \"" + m.name() + "\"");
+  }
+  m.load_state(archive);
+  archive.get("service_force_n_per_m", force_, force_.size());
+  archive.get("service_previous_position_m", previous_position_, previous_position_.size());
+  reply.envelope.mutable_ack();
 }
 
 namespace {

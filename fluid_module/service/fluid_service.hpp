@@ -27,6 +27,9 @@ class FluidService final : public wire::ModuleHandler {
   void guard_not_finite(double time_s, std::span<const double> position,
                         wire::FluidResult& result) const;
   void frame(const wire::FrameRequest& request, wire::Message& reply);
+  /// Checkpoint and restart: the model's state (FluidModel::save_state) and the service's own.
+  void save_state(wire::Message& reply);
+  void load_state(const wire::Message& request, wire::Message& reply);
   FluidModel& model();
 
   std::unique_ptr<FluidModel> model_;

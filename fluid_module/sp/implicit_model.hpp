@@ -20,6 +20,8 @@ class ImplicitModel final : public PorePressureModel {
  private:
   StabilityLimit diffusion_limit() const override;
   void advance(double dt_s) override;
+  void save_model_state(state::StateArchive& archive) const override;
+  void load_model_state(const state::StateArchive& archive) override;
   void add_scalars(std::vector<std::pair<std::string, double>>& out) const override;
 
   ImplicitSystem system_;

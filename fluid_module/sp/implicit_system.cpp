@@ -177,4 +177,12 @@ ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const 
   return report;
 }
 
+void ImplicitSystem::set_guess(std::span<const double> guess) {
+  const auto n = static_cast<Eigen::Index>(guess.size());
+  guess_ = Eigen::Map<const Eigen::VectorXd>(guess.data(), n);
+  // step() sizes its vectors only when the count changes: keep b and d consistent with the guess.
+  b_.setZero(n);
+  d_.setZero(n);
+}
+
 }  // namespace rockcut::fluid::sp

@@ -55,6 +55,11 @@ class ImplicitSystem {
   /// Largest number of active-set rounds per step; after it the pressure is clamped at p_min.
   static constexpr unsigned kMaxRounds = 50;
 
+  /// The conjugate-gradient start of the next step (the last increment): a checkpoint keeps it,
+  /// since the solution's last bits depend on where the iteration starts.
+  std::vector<double> guess() const { return {guess_.data(), guess_.data() + guess_.size()}; }
+  void set_guess(std::span<const double> guess);
+
  private:
   enum Fixed : std::uint8_t { free = 0, drained = 1, clamped = 2 };
   void rebuild_pattern(const Geometry& geo);

@@ -32,6 +32,13 @@ class NeighbourList {
   std::size_t pairs() const { return neighbours_.size(); }
   std::uint64_t builds() const { return builds_; }
   double list_radius_m() const { return radius_; }
+  /// The positions of the last build: a checkpoint rebuilds the same lists from them.
+  const std::vector<double>& position_at_build() const { return position_at_build_; }
+  /// Builds from `position_at_build` and takes `builds` as the count of builds so far (restart).
+  void restore(std::span<const double> position_at_build, std::uint64_t builds) {
+    build(position_at_build);
+    builds_ = builds;
+  }
 
  private:
   void bin(std::span<const double> position);

@@ -1,0 +1,192 @@
+// The DEM's part of a checkpoint (DemSystem::save_state / load_state): everything that decides the
+// next bit. A run resumed from it continues bit for bit as the run that wrote it: the particle
+// arrays, the bonds with their shear springs, the contacts in list order with their tangential
+// history (the order of the pair sums), the walls' offsets and listed pairs, the damping forces of
+// the last evaluation (the F^n half of the damping trapezoid), the ledger, the breaks, and the
+// drift since the last neighbour-list rebuild (so the next rebuild comes at the same step).
+// What the scene rebuilds at Init (radii, masses, settings, segments) is not saved.
+#include <stdexcept>
+#include <string>
+
+#include "core/dem_system.hpp"
+
+namespace rockcut::dem {
+
+using state::StateArchive;
+using state::StateError;
+
+namespace {
+
+void check_index(std::string_view what, const std::vector<std::uint32_t>& v, std::size_t limit) {
+  for (std::uint32_t i : v) {
+    if (i >= limit) {
+      throw StateError("state member \"" + std::string(what) + "\" refers to item " +
+                       std::to_string(i) + " of " + std::to_string(limit));
+    }
+  }
+}
+
+}  // namespace
+
+void BondSet::save_state(StateArchive& a) const {
+  a.put_values("bond_i", i_);
+  a.put_values("bond_j", j_);
+  a.put("bond_rest_length_m", rest_length_);
+  a.put("bond_shear_force_n_per_m", shear_force_);
+  a.put("bond_normal_force_at_break_n_per_m", normal_force_at_break_);
+  a.put_values("bond_broken", broken_);
+}
+
+void BondSet::load_state(const StateArchive& a, std::size_t particles) {
+  a.get_values("bond_i", i_);
+  const std::size_t n = i_.size();
+  a.get_values("bond_j", j_, n);
+  a.get("bond_rest_length_m", rest_length_, n);
+  a.get("bond_shear_force_n_per_m", shear_force_, n);
+  a.get("bond_normal_force_at_break_n_per_m", normal_force_at_break_, n);
+  a.get_values("bond_broken", broken_, n);
+  check_index("bond_i", i_, particles);
+  check_index("bond_j", j_, particles);
+  refresh_partners(particles);
+}
+
+void ContactList::save_state(StateArchive& a) const {
+  a.put_values("contact_i", i_);
+  a.put_values("contact_j", j_);
+  a.put("contact_shear_force_n_per_m", shear_force_);
+}
+
+void ContactList::load_state(const StateArchive& a, std::size_t particles) {
+  a.get_values("contact_i", i_);
+  a.get_values("contact_j", j_, i_.size());
+  a.get("contact_shear_force_n_per_m", shear_force_, i_.size());
+  check_index("contact_i", i_, particles);
+  check_index("contact_j", j_, particles);
+}
+
+// Per body: velocity, offset, force and the previous step's force (x and y of each).
+constexpr std::size_t kWallBodyValues = 8;
+
+void WallSet::save_state(StateArchive& a) const {
+  std::vector<double> bodies;
+  bodies.reserve(kWallBodyValues * bodies_.size());
+  for (const WallBody& b : bodies_) {
+    bodies.insert(bodies.end(), {b.velocity_x, b.velocity_y, b.offset_x, b.offset_y, b.force_x,
+                                 b.force_y, b.previous_force_x, b.previous_force_y});
+  }
+  a.put("wall_bodies", std::move(bodies), kWallBodyValues);
+  a.put("wall_offset_at_rebuild_m", offset_at_rebuild_, 2);
+  a.put_values("wall_pair_particle", particle_);
+  a.put_values("wall_pair_segment", segment_);
+  a.put("wall_pair_shear_force_n_per_m", shear_force_);
+}
+
+void WallSet::load_state(const StateArchive& a, std::size_t particles) {
+  const auto bodies = a.values("wall_bodies", kWallBodyValues * bodies_.size());
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    const double* v = &bodies[kWallBodyValues * k];
+    WallBody& b = bodies_[k];
+    b.velocity_x = v[0];
+    b.velocity_y = v[1];
+    b.offset_x = v[2];
+    b.offset_y = v[3];
+    b.force_x = v[4];
+    b.force_y = v[5];
+    b.previous_force_x = v[6];
+    b.previous_force_y = v[7];
+  }
+  a.get("wall_offset_at_rebuild_m", offset_at_rebuild_, 2 * bodies_.size());
+  a.get_values("wall_pair_particle", particle_);
+  a.get_values("wall_pair_segment", segment_, particle_.size());
+  a.get("wall_pair_shear_force_n_per_m", shear_force_, particle_.size());
+  check_index("wall_pair_particle", particle_, particles);
+  check_index("wall_pair_segment", segment_, segments_.size());
+}
+
+void DemSystem::save_state(StateArchive& a) const {
+  if (in_split_step_) throw std::logic_error("dem: state asked for inside a split step");
+  const Particles& p = particles_;
+  a.put("position_m", p.position, 2);
+  a.put("velocity_m_s", p.velocity, 2);
+  a.put("force_n_per_m", p.force, 2);
+  a.put("external_force_n_per_m", p.external_force, 2);
+  a.put("angular_velocity_rad_s", p.angular_velocity);
+  a.put("torque_n", p.torque);
+  a.put("damping_force", damping_force_, 3);
+  bonds_.save_state(a);
+  contacts_.save_state(a);
+  walls_.save_state(a);
+  std::vector<double> reactions;
+  for (const ClampedGroup& g : clamped_) reactions.push_back(g.reaction_y_n_per_m);
+  a.put("clamped_reaction_y_n_per_m", reactions);
+  std::vector<double> break_time, break_xy, break_mode, break_pair;
+  for (const BondBreak& b : breaks_) {
+    break_time.push_back(b.time_s);
+    break_xy.insert(break_xy.end(), {b.x_m, b.y_m});
+    break_mode.push_back(static_cast<double>(b.mode));
+    break_pair.insert(break_pair.end(), {static_cast<double>(b.i), static_cast<double>(b.j)});
+  }
+  a.put("break_time_s", break_time);
+  a.put("break_position_m", break_xy, 2);
+  a.put("break_mode", break_mode);
+  a.put("break_pair", break_pair, 2);
+  a.put("ledger_j", std::vector<double>{ledger_.boundary_work_j, ledger_.external_work_j,
+                                        ledger_.gravity_work_j, ledger_.damping_j,
+                                        ledger_.friction_j, ledger_.broken_bond_j});
+  a.put_scalar("max_drift_m", max_drift_m_);
+  a.put_scalar("dt_last_s", dt_last_);
+  a.put_scalar("time_s", time_s_);
+  a.put_scalar("steps", static_cast<double>(steps_));
+  a.put_scalar("neighbour_rebuilds", static_cast<double>(rebuilds_));
+  a.put_scalar("internal_forces_current", internal_forces_current_ ? 1.0 : 0.0);
+  a.put_scalar("has_body_forces", has_body_forces_ ? 1.0 : 0.0);
+}
+
+void DemSystem::load_state(const StateArchive& a) {
+  if (in_split_step_) throw std::logic_error("dem: state loaded inside a split step");
+  Particles& p = particles_;
+  const std::size_t n = p.size();
+  a.get("position_m", p.position, 2 * n);
+  a.get("velocity_m_s", p.velocity, 2 * n);
+  a.get("force_n_per_m", p.force, 2 * n);
+  a.get("external_force_n_per_m", p.external_force, 2 * n);
+  a.get("angular_velocity_rad_s", p.angular_velocity, n);
+  a.get("torque_n", p.torque, n);
+  a.get("damping_force", damping_force_);
+  if (!damping_force_.empty() && damping_force_.size() != 3 * n) {
+    throw StateError("state member \"damping_force\" has " + std::to_string(damping_force_.size()) +
+                     " values for " + std::to_string(n) + " particles");
+  }
+  bonds_.load_state(a, n);
+  contacts_.load_state(a, n);
+  walls_.load_state(a, n);
+  const auto reactions = a.values("clamped_reaction_y_n_per_m", clamped_.size());
+  for (std::size_t k = 0; k < clamped_.size(); ++k) clamped_[k].reaction_y_n_per_m = reactions[k];
+  const auto time = a.values("break_time_s");
+  const auto xy = a.values("break_position_m", 2 * time.size());
+  std::vector<BreakMode> modes;
+  std::vector<std::uint32_t> pairs;
+  a.get_values("break_mode", modes, time.size());
+  a.get_values("break_pair", pairs, 2 * time.size());
+  check_index("break_pair", pairs, n);
+  breaks_.clear();
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    if (modes[k] != BreakMode::tensile && modes[k] != BreakMode::shear) {
+      throw StateError("state member \"break_mode\" holds an unknown mode");
+    }
+    breaks_.push_back({modes[k], time[k], xy[2 * k], xy[2 * k + 1], pairs[2 * k], pairs[2 * k + 1]});
+  }
+  const auto ledger = a.values("ledger_j", 6);
+  ledger_ = {ledger[0], ledger[1], ledger[2], ledger[3], ledger[4], ledger[5]};
+  max_drift_m_ = a.scalar("max_drift_m");
+  dt_last_ = a.scalar("dt_last_s");
+  time_s_ = a.scalar("time_s");
+  steps_ = a.scalar_as<std::uint64_t>("steps");
+  rebuilds_ = a.scalar_as<std::uint64_t>("neighbour_rebuilds");
+  internal_forces_current_ = a.scalar("internal_forces_current") != 0.0;
+  has_body_forces_ = a.scalar("has_body_forces") != 0.0;
+  // The thread shares of the restored lists, as after the rebuild that made them.
+  update_force_windows();
+}
+
+}  // namespace rockcut::dem

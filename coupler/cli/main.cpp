@@ -1,5 +1,6 @@
 // coupler: the command line of rockcut.
 //   coupler run CASE [--out DIR] [--transport ipc|inproc|tcp] [--set path=value ...]
+//   coupler resume OUT [--set path=value ...]    continue a run from its newest valid checkpoint
 //   coupler validate CASE [--set path=value ...]
 #include <unistd.h>
 
@@ -79,6 +80,38 @@ int main(int argc, char** argv) {
   run->add_option("--fluid-endpoint", options.fluid_endpoint, "tcp: where fluid_module serves")
       ->capture_default_str();
 
+  run->add_option("--checkpoint-every", options.checkpoint_every_s,
+                  "Wall time between two checkpoints in OUT/checkpoints/ [s]; 0: none on wall time "
+                  "(SIGUSR1, SIGTERM, SIGINT and the end of the run still write one)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--no-checkpoints", options.no_checkpoints,
+                "Write no checkpoint at all; SIGINT and SIGTERM then stop at once");
+  run->add_flag("--resume", options.resume_if_possible,
+                "If OUT holds a checkpoint, continue from it (the scene may change only the end "
+                "time, output cadence and checkpoint settings); else start afresh. The same "
+                "command then serves a first start and every restart (a requeued batch job)");
+
+  rockcut::coupler::RunOptions resume_options;
+  resume_options.module_dir = options.module_dir;
+  std::string resume_dir;
+  CLI::App* resume = app.add_subcommand(
+      "resume", "Continue the run in OUT from its newest valid checkpoint, with the scene the "
+                "checkpoint holds; appends to OUT/run.h5 as if the run had never stopped");
+  resume->add_option("OUT", resume_dir, "Output directory of the run to continue")->required();
+  resume->add_option("--set", resume_options.overrides,
+                     "Change a field that cannot change the physics, e.g. time.end_time_s=0.2 "
+                     "(repeatable)")
+      ->allow_extra_args(false);
+  resume->add_option("--transport", resume_options.transport, "As for run")
+      ->transform(CLI::CheckedTransformer(transports, CLI::ignore_case));
+  resume->add_option("--dem-endpoint", resume_options.dem_endpoint, "As for run");
+  resume->add_option("--fluid-endpoint", resume_options.fluid_endpoint, "As for run");
+  resume->add_option("--checkpoint-every", resume_options.checkpoint_every_s, "As for run")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  resume->add_flag("--no-checkpoints", resume_options.no_checkpoints, "As for run");
+
   CLI::App* val = app.add_subcommand("validate", "Check a scene against the schema; start nothing");
   val->add_option("CASE", scene_path, "Scene file (protobuf text format)")->required();
   val->add_option("--set", overrides, "Override a scalar scene field: dotted.path=value")
@@ -90,6 +123,11 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   if (val->parsed()) return validate(scene_path, overrides);
+  if (resume->parsed()) {
+    resume_options.out_dir = resume_dir;
+    resume_options.resume = true;
+    return rockcut::coupler::run_scene(resume_options);
+  }
   options.scene_path = scene_path;
   options.overrides = overrides;
   return rockcut::coupler::run_scene(options);

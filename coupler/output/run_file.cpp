@@ -2,6 +2,9 @@
 
 #include <map>
 
+#include <algorithm>
+#include <cstdlib>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -132,6 +135,134 @@ RunFile::RunFile(const std::filesystem::path& out_dir, const std::string& scene_
   m.open = true;
 }
 
+RunFile::RunFile() : impl_(std::make_unique<Impl>()) {}
+
+namespace {
+herr_t collect_child(hid_t, const char* name, const H5L_info_t*, void* data) {
+  static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+  return 0;
+}
+
+std::vector<std::string> children(hid_t loc, const std::string& path, const std::string& ctx) {
+  h5::Handle group = h5::group(H5Gopen2(loc, path.c_str(), H5P_DEFAULT), ctx,
+                               "cannot open group " + path);
+  std::vector<std::string> names;
+  hsize_t index = 0;
+  h5::check(H5Literate(group.get(), H5_INDEX_NAME, H5_ITER_INC, &index, collect_child, &names),
+            ctx, "cannot list " + path);
+  return names;
+}
+}  // namespace
+
+std::unique_ptr<RunFile> RunFile::resume(const std::filesystem::path& out_dir,
+                                         const RunFileExtent& extent,
+                                         const std::vector<std::string>& field_order,
+                                         const std::map<std::string, std::string>& attributes) {
+  std::unique_ptr<RunFile> run(new RunFile());
+  Impl& m = *run->impl_;
+  const std::filesystem::path h5_path = out_dir / kH5Name;
+  m.ctx = h5_path.string();
+  h5::silence_auto_errors();
+  if (H5Fis_hdf5(m.ctx.c_str()) <= 0) {
+    H5Eclear2(H5E_DEFAULT);
+    throw std::runtime_error(m.ctx + ": missing or not readable: the interrupted run's output is "
+                                     "needed to resume it");
+  }
+  h5::Handle fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS), m.ctx, "cannot create access list");
+  h5::check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), m.ctx,
+            "cannot set the close degree");
+  m.file = h5::file(H5Fopen(m.ctx.c_str(), H5F_ACC_RDWR, fapl.get()), m.ctx, "cannot open");
+  const hid_t file = m.file.get();
+
+  // Frames after the checkpoint go; the others are indexed again, in the order written.
+  std::vector<XdmfFrame> kept;
+  for (const std::string& name : children(file, "/frames", m.ctx)) {
+    const std::string path = "/frames/" + name;
+    const std::uint64_t index = std::strtoull(name.c_str(), nullptr, 10);
+    if (index >= extent.frames) {
+      h5::check(H5Ldelete(file, path.c_str(), H5P_DEFAULT), m.ctx, "cannot remove " + path);
+      continue;
+    }
+    h5::Handle group = h5::group(H5Gopen2(file, path.c_str(), H5P_DEFAULT), m.ctx,
+                                 "cannot open " + path);
+    XdmfFrame frame{path, 0.0, 0, {}};
+    h5::read_scalar_attribute(group.get(), "time_s", H5T_NATIVE_DOUBLE, &frame.time_s, m.ctx);
+    std::vector<std::string> fields = children(file, path, m.ctx);
+    std::stable_sort(fields.begin(), fields.end(), [&](const std::string& a, const std::string& b) {
+      auto rank = [&](const std::string& f) {
+        return std::find(field_order.begin(), field_order.end(), f) - field_order.begin();
+      };
+      return rank(a) < rank(b);
+    });
+    for (const std::string& f : fields) {
+      h5::Handle set = h5::dataset(H5Dopen2(group.get(), f.c_str(), H5P_DEFAULT), m.ctx,
+                                   "cannot open " + path + "/" + f);
+      h5::Handle space = h5::dataspace(H5Dget_space(set.get()), m.ctx, "no dataspace");
+      hsize_t dims[2] = {0, 1};
+      const int rank = H5Sget_simple_extent_ndims(space.get());
+      H5Sget_simple_extent_dims(space.get(), dims, nullptr);
+      frame.particle_count = dims[0];
+      frame.fields.push_back({f, rank == 2 ? static_cast<int>(dims[1]) : 1});
+    }
+    kept.push_back(std::move(frame));
+  }
+  if (kept.size() != extent.frames) {
+    throw std::runtime_error(m.ctx + ": holds " + std::to_string(kept.size()) +
+                             " of the frames the checkpoint recorded (" +
+                             std::to_string(extent.frames) + ")");
+  }
+  std::sort(kept.begin(), kept.end(),
+            [](const XdmfFrame& a, const XdmfFrame& b) { return a.group < b.group; });
+
+  m.timeseries.emplace(file, m.ctx, "/timeseries", extent.timeseries_rows,
+                       extent.timeseries_columns);
+  for (const std::string& table : children(file, "/", m.ctx)) {
+    if (table == "timeseries" || table == "frames" || table == "xdmf") continue;
+    const auto rows = extent.table_rows.find(table);
+    if (rows == extent.table_rows.end() || rows->second == 0) {
+      // Created after the checkpoint: created again when its first row comes.
+      h5::check(H5Ldelete(file, ("/" + table).c_str(), H5P_DEFAULT), m.ctx,
+                "cannot remove /" + table);
+      continue;
+    }
+    const auto columns = extent.table_columns.find(table);
+    m.tables.emplace(std::piecewise_construct, std::forward_as_tuple(table),
+                     std::forward_as_tuple(file, m.ctx, "/" + table, rows->second,
+                                           columns == extent.table_columns.end()
+                                               ? std::vector<std::string>{}
+                                               : columns->second));
+  }
+  m.vertex_ids = h5::dataset(H5Dopen2(file, kVertexIds, H5P_DEFAULT), m.ctx,
+                             std::string("cannot open ") + kVertexIds);
+  {
+    h5::Handle space = h5::dataspace(H5Dget_space(m.vertex_ids.get()), m.ctx, "no dataspace");
+    H5Sget_simple_extent_dims(space.get(), &m.vertex_id_count, nullptr);
+  }
+  for (const auto& [name, value] : attributes) {
+    h5::write_string_attribute(file, name, value, m.ctx + ": /");
+  }
+  m.flush();
+  m.xdmf.emplace(out_dir / kXdmfName, kH5Name, kVertexIds);
+  for (XdmfFrame& f : kept) m.xdmf->add_frame(std::move(f));
+  m.frames = extent.frames;
+  m.xdmf->write(static_cast<std::size_t>(m.vertex_id_count));
+  m.open = true;
+  return run;
+}
+
+RunFileExtent RunFile::extent() const {
+  const Impl& m = *impl_;
+  RunFileExtent e;
+  e.timeseries_rows = m.timeseries->rows();
+  e.timeseries_columns = m.timeseries->columns();
+  for (const auto& [name, table] : m.tables) {
+    e.table_rows[name] = table.rows();
+    e.table_columns[name] = table.columns();
+  }
+  e.frames = m.frames;
+  return e;
+}
+
 RunFile::~RunFile() {
   try {
     close();
@@ -203,6 +334,11 @@ void RunFile::set_attribute(const std::string& name, const std::string& value) {
 }
 
 std::size_t RunFile::frame_count() const { return impl_->frames; }
+
+void RunFile::flush() {
+  impl_->require_open();
+  impl_->flush();
+}
 
 void RunFile::close() {
   if (!impl_ || !impl_->open) return;

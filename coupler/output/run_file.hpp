@@ -20,12 +20,30 @@ struct FrameField {
   std::span<const double> values;  ///< particle_count * components values
 };
 
+/// How far a run had written run.h5 when a checkpoint was taken: a resumed run cuts the file back
+/// to it, so that what the interrupted run wrote after the checkpoint is dropped, not duplicated.
+struct RunFileExtent {
+  std::uint64_t timeseries_rows = 0;
+  std::vector<std::string> timeseries_columns;
+  std::map<std::string, std::uint64_t> table_rows;  ///< event tables such as /breaks
+  std::map<std::string, std::vector<std::string>> table_columns;
+  std::uint64_t frames = 0;
+};
+
 class RunFile {
  public:
   /// Creates OUT/run.h5 (truncating) and OUT/run.xdmf. `scene_text` and `attributes` (versions,
   /// transport, ...) are stored as string attributes on the root group.
   RunFile(const std::filesystem::path& out_dir, const std::string& scene_text,
           const std::map<std::string, std::string>& attributes);
+  /// Reopens OUT/run.h5 of an interrupted run, cuts it back to `extent`, rewrites run.xdmf from
+  /// the frames that stay (their fields in the order of `field_order`) and stores `attributes`.
+  static std::unique_ptr<RunFile> resume(const std::filesystem::path& out_dir,
+                                         const RunFileExtent& extent,
+                                         const std::vector<std::string>& field_order,
+                                         const std::map<std::string, std::string>& attributes);
+  /// What has been written so far (for a checkpoint).
+  RunFileExtent extent() const;
   ~RunFile();
   RunFile(const RunFile&) = delete;
   RunFile& operator=(const RunFile&) = delete;
@@ -51,11 +69,14 @@ class RunFile {
   void set_attribute(const std::string& name, const std::string& value);
 
   std::size_t frame_count() const;
+  /// Gets everything written so far to disk (before a checkpoint records it).
+  void flush();
 
   /// Flushes and closes; idempotent. Called by the destructor.
   void close();
 
  private:
+  RunFile();
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -24,6 +24,63 @@ Timeseries::Timeseries(hid_t file, std::string context, std::string group)
   step_ = create_column("step", H5T_STD_U64LE, &zero);
 }
 
+namespace {
+herr_t collect_link_name(hid_t, const char* name, const H5L_info_t*, void* data) {
+  static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+  return 0;
+}
+}  // namespace
+
+Timeseries::Timeseries(hid_t file, std::string context, std::string group, std::uint64_t rows,
+                       const std::vector<std::string>& columns)
+    : context_(std::move(context)), group_path_(std::move(group)) {
+  group_ = h5::group(H5Gopen2(file, group_path_.c_str(), H5P_DEFAULT), context_,
+                     "cannot open group " + group_path_);
+  const hsize_t one = 1;
+  one_element_ = h5::dataspace(H5Screate_simple(1, &one, nullptr), context_,
+                               "cannot create a one-element dataspace");
+  std::vector<std::string> present;
+  hsize_t index = 0;
+  h5::check(H5Literate(group_.get(), H5_INDEX_NAME, H5_ITER_INC, &index, collect_link_name,
+                       &present),
+            context_, "cannot list " + group_path_);
+  auto open_cut = [&](const std::string& name) {
+    Column column{name, h5::dataset(H5Dopen2(group_.get(), name.c_str(), H5P_DEFAULT), context_,
+                                    "cannot open " + where(name))};
+    h5::Handle space = h5::dataspace(H5Dget_space(column.dataset.get()), context_,
+                                     "cannot get the dataspace of " + where(name));
+    hsize_t have = 0;
+    H5Sget_simple_extent_dims(space.get(), &have, nullptr);
+    if (have < rows) {
+      throw std::runtime_error(context_ + ": " + where(name) + " has " + std::to_string(have) +
+                               " rows, the checkpoint recorded " + std::to_string(rows));
+    }
+    const hsize_t cut = rows;
+    h5::check(H5Dset_extent(column.dataset.get(), &cut), context_, "cannot cut " + where(name));
+    return column;
+  };
+  time_ = open_cut("time_s");
+  step_ = open_cut("step");
+  for (const std::string& name : columns) {
+    index_.emplace(name, scalars_.size());
+    scalars_.push_back(open_cut(name));
+    seen_in_call_.push_back(0);
+  }
+  // Columns the interrupted run created after the checkpoint are created again when they come.
+  for (const std::string& name : present) {
+    if (name == "time_s" || name == "step" || index_.count(name)) continue;
+    h5::check(H5Ldelete(group_.get(), name.c_str(), H5P_DEFAULT), context_,
+              "cannot remove " + where(name));
+  }
+  rows_ = rows;
+}
+
+std::vector<std::string> Timeseries::columns() const {
+  std::vector<std::string> out;
+  for (const Column& c : scalars_) out.push_back(c.name);
+  return out;
+}
+
 std::string Timeseries::where(const std::string& column) const {
   return group_path_ + "/" + column;
 }

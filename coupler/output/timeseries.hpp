@@ -19,6 +19,12 @@ class Timeseries {
   /// columns under `file`. `context` (the file name) prefixes every error message. The same table
   /// form stores event logs such as /breaks (one row per bond break).
   Timeseries(hid_t file, std::string context, std::string group = "/timeseries");
+  /// Reopens the existing table `group` of a resumed run, cut back to its first `rows` rows and
+  /// to the columns `columns` (besides time_s and step): what a checkpoint recorded of it.
+  Timeseries(hid_t file, std::string context, std::string group, std::uint64_t rows,
+             const std::vector<std::string>& columns);
+  /// The value columns in the order they were created.
+  std::vector<std::string> columns() const;
 
   /// Appends one row. A column first seen now is created with NaN for the earlier rows; a known
   /// column missing from `scalars` gets NaN (the dataset fill value). O(columns), never O(rows).

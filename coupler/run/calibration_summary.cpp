@@ -116,4 +116,27 @@ void CalibrationSummary::write(Summary& summary) const {
   }
 }
 
+void CalibrationSummary::save_state(state::StateArchive& a) const {
+  a.put("calibration_split", std::vector<double>{split_ ? 1.0 : 0.0, largest_load_, split_load_,
+                                                 split_strain_});
+  std::vector<double> samples;
+  for (const Sample& s : samples_) {
+    samples.insert(samples.end(), {s.axial_strain, s.load, s.lateral_strain, s.gauge_strain});
+  }
+  a.put("calibration_samples", std::move(samples), 4);
+}
+
+void CalibrationSummary::load_state(const state::StateArchive& a) {
+  const auto split = a.values("calibration_split", 4);
+  split_ = split[0] != 0.0;
+  largest_load_ = split[1];
+  split_load_ = split[2];
+  split_strain_ = split[3];
+  const auto samples = a.values("calibration_samples");
+  samples_.clear();
+  for (std::size_t k = 0; k + 3 < samples.size(); k += 4) {
+    samples_.push_back({samples[k], samples[k + 1], samples[k + 2], samples[k + 3]});
+  }
+}
+
 }  // namespace rockcut::coupler

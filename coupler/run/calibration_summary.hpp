@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "output/summary_json.hpp"
+#include "state/state_archive.hpp"
 #include "rockcut/scene.pb.h"
 
 namespace rockcut::coupler {
@@ -19,6 +20,9 @@ class CalibrationSummary {
   /// One time-series sample of the DEM's scalars.
   void observe(const std::vector<std::pair<std::string, double>>& scalars);
   void write(Summary& summary) const;
+  /// Checkpoint: the samples and the split detector.
+  void save_state(state::StateArchive& a) const;
+  void load_state(const state::StateArchive& a);
   /// True once a Brazilian disc has split and the scene asks to stop there (stop_at_split).
   bool test_over() const { return stop_at_split_ && split_; }
 

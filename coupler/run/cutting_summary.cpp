@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "run/named_values_state.hpp"
+
 namespace rockcut::coupler {
 
 namespace {
@@ -63,6 +65,27 @@ void CuttingSummary::write(Summary& summary) const {
                 node.samples ? node.sum_pa / static_cast<double>(node.samples) : 0.0);
     summary.set("pressure_" + node.name + "_samples", static_cast<std::int64_t>(node.samples));
   }
+}
+
+void CuttingSummary::save_state(state::StateArchive& a) const {
+  a.put("cutting_sums", std::vector<double>{sum_x_, sum_y_, static_cast<double>(samples_)});
+  std::vector<double> nodes;
+  for (const NodeMean& n : nodes_) nodes.insert(nodes.end(), {n.sum_pa, static_cast<double>(n.samples)});
+  a.put("cutting_node_sums", std::move(nodes), 2);
+  save_named_values(a, "cutting_last", last_);
+}
+
+void CuttingSummary::load_state(const state::StateArchive& a) {
+  const auto sums = a.values("cutting_sums", 3);
+  sum_x_ = sums[0];
+  sum_y_ = sums[1];
+  samples_ = static_cast<std::uint64_t>(sums[2]);
+  const auto nodes = a.values("cutting_node_sums", 2 * nodes_.size());
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    nodes_[k].sum_pa = nodes[2 * k];
+    nodes_[k].samples = static_cast<std::uint64_t>(nodes[2 * k + 1]);
+  }
+  last_ = load_named_values(a, "cutting_last");
 }
 
 }  // namespace rockcut::coupler

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "output/summary_json.hpp"
+#include "state/state_archive.hpp"
 #include "rockcut/scene.pb.h"
 
 namespace rockcut::coupler {
@@ -30,6 +31,9 @@ class CuttingSummary {
   /// One time-series sample of the DEM's scalars (sorted by name).
   void observe(const std::vector<std::pair<std::string, double>>& scalars);
   void write(Summary& summary) const;
+  /// Checkpoint: the steady-part sums and the last sample.
+  void save_state(state::StateArchive& a) const;
+  void load_state(const state::StateArchive& a);
 
  private:
   bool active_ = false;

@@ -48,7 +48,7 @@ ModuleLink::ModuleLink(zmq::context_t& context, const LinkSpec& spec) : spec_(sp
   }
   wire::ClientHooks hooks;
   hooks.dead = [this] { return dead(); };
-  hooks.interrupted = [] { return stop_signal() != 0; };
+  hooks.interrupted = [] { return interrupt_now(); };
   client_ = std::make_unique<wire::ModuleClient>(context, label_, spec.endpoint, spec.timeout,
                                                  std::move(hooks));
 }

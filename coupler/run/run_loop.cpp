@@ -5,23 +5,26 @@
 #include <cstdio>
 
 #include "run/run_session.hpp"
+#include "run/signals.hpp"
 #include "wire/protocol.hpp"
 
 namespace rockcut::coupler {
 
 void RunSession::loop() {
-  next_series_step_ = 0;
-  next_frame_index_ = 0;
-  forces_held_ = false;
+  forces_held_ = false;  // the clock itself starts at 0, or where a checkpoint left it
   dem_busy_.start_loop();
   fluid_busy_.start_loop();
 
-  if (coupled_) {
-    exchange(0, true);  // t = 0: a^0 includes the fluid force
-  } else {
-    advance_dry(0);
+  // A checkpoint's stop: the first SIGINT/SIGTERM lets the exchange in progress finish.
+  set_graceful_stop(checkpoints_);
+  if (!resume_from_) {
+    if (coupled_) {
+      exchange(0, true);  // t = 0: a^0 includes the fluid force
+    } else {
+      advance_dry(0);
+    }
+    maybe_record(true);
   }
-  maybe_record(true);
 
   const double frame_interval = scene_.output().frame_interval_s();
   while (step_ < plan_.total_steps && !calibration_->test_over()) {
@@ -40,9 +43,15 @@ void RunSession::loop() {
       chunk = std::clamp<std::uint64_t>(chunk, 1, 1u << 30);
       advance_dry(static_cast<unsigned>(chunk));
     }
-    maybe_record(step_ >= plan_.total_steps);
+    maybe_record(false);
     progress_->update(time_s_, step_);
+    maybe_checkpoint();
   }
+  // The end-of-run checkpoint comes before the last row and frame that only the end asks for:
+  // a run continued from it (a later end time) records what an uninterrupted one does.
+  if (checkpoints_) write_checkpoint_now("end of run");
+  set_graceful_stop(false);
+  maybe_record(true);
   if (calibration_->test_over()) {
     std::printf("\nthe Brazilian disc split at t = %.6g s: test ended (loading_test.stop_at_split)\n",
                 time_s_);
@@ -175,11 +184,12 @@ bool RunSession::frame_due(double time_s) const {
 }
 
 bool RunSession::record_due(std::uint64_t step, double time_s) const {
-  return step >= plan_.total_steps || series_due(step) || frame_due(time_s);
+  return step >= plan_.total_steps || series_due(step) || frame_due(time_s) || checkpoint_due_;
 }
 
 void RunSession::maybe_record(bool last) {
-  if (series_due(step_) || last) {
+  if (series_due(step_) || (last && row_step_ != step_)) {
+    row_step_ = step_;
     run_file_->append_timeseries(time_s_, step_, scalars_);
     cutting_->observe(scalars_);
     calibration_->observe(scalars_);
@@ -188,7 +198,8 @@ void RunSession::maybe_record(bool last) {
     next_series_step_ = (step_ / every + 1) * every;
   }
   const double interval = scene_.output().frame_interval_s();
-  if (last || frame_due(time_s_)) {
+  if ((last && frame_step_ != step_) || frame_due(time_s_)) {
+    frame_step_ = step_;
     write_frame();
     if (interval > 0) {
       next_frame_index_ = static_cast<std::uint64_t>(std::floor(time_s_ / interval + 0.5)) + 1;

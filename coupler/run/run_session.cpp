@@ -34,33 +34,130 @@ const std::vector<std::string> kDefaultFrameFields = {"position", "velocity", "r
 
 }  // namespace
 
-int run_scene(const RunOptions& options) {
+namespace {
+
+// A packing file named in the scene is relative to the scene file; the DEM gets it absolute.
+void make_paths_absolute(scene::LoadedScene& loaded) {
+  if (!loaded.scene.dem().has_packing_file()) return;
+  const fs::path p(loaded.scene.dem().packing_file().path());
+  if (p.is_relative()) {
+    loaded.scene.mutable_dem()->mutable_packing_file()->set_path(
+        fs::absolute(loaded.path.parent_path() / p).lexically_normal().string());
+  }
+}
+
+// The scene a run continues with: the checkpoint's own (`coupler resume`) or the named file's
+// (`coupler run --resume`), with the --set overrides.
+scene::LoadedScene resumed_scene(const RunOptions& options, const Checkpoint& c,
+                                 const fs::path& file) {
+  scene::LoadedScene loaded;
+  if (options.resume) {
+    loaded = scene::parse_scene(c.scene_text, file.string() + " (its scene)", options.overrides);
+    loaded.path = c.scene_path;
+    std::vector<std::string> all = c.overrides;
+    all.insert(all.end(), options.overrides.begin(), options.overrides.end());
+    loaded.overrides = all;
+  } else {
+    loaded = scene::load_scene(options.scene_path, options.overrides);
+  }
+  make_paths_absolute(loaded);
+  return loaded;
+}
+
+// Why checkpoint `c` cannot continue a run of `now` (empty: it can); prints allowed changes.
+std::string refuse_reason(const Checkpoint& c, const scene::LoadedScene& now) {
+  if (c.rockcut_version != ROCKCUT_VERSION || c.protocol_version != wire::kProtocolVersion) {
+    return "written by rockcut " + c.rockcut_version + " (protocol " +
+           std::to_string(c.protocol_version) + "); this is rockcut " ROCKCUT_VERSION +
+           std::string(" (protocol ") + std::to_string(wire::kProtocolVersion) +
+           "): a run resumes only with the program that wrote its checkpoint";
+  }
+  scene::LoadedScene saved;
+  try {
+    saved = scene::parse_scene(c.scene_text, "checkpoint scene");
+  } catch (const scene::SceneError& e) {
+    return std::string("its scene no longer validates: ") + e.what();
+  }
+  std::vector<std::string> allowed;
+  const std::vector<std::string> differ = scene_differences(saved.scene, now.scene, &allowed);
+  if (!differ.empty()) {
+    std::string reason = "the scene differs in what can change the physics:";
+    for (const std::string& d : differ) reason += "\n  " + d;
+    return reason + "\n(a resumed run may change only: " + [] {
+      std::string list;
+      for (const std::string& f : resume_allowed_fields()) list += (list.empty() ? "" : ", ") + f;
+      return list;
+    }() + ")";
+  }
+  for (const std::string& a : allowed) std::fprintf(stderr, "resume     changed %s\n", a.c_str());
+  return "";
+}
+
+}  // namespace
+
+int run_scene(const RunOptions& options_in) {
+  RunOptions options = options_in;
+  std::optional<Checkpoint> checkpoint;
   scene::LoadedScene loaded;
   try {
-    loaded = scene::load_scene(options.scene_path, options.overrides);
+    if (!options.resume) loaded = scene::load_scene(options.scene_path, options.overrides);
+    if (options.resume || options.resume_if_possible) {
+      if (options.out_dir.empty()) options.out_dir = fs::path("out") / loaded.path.stem();
+      const fs::path dir = options.out_dir / "checkpoints";
+      const std::vector<fs::path> files = list_checkpoints(dir);
+      if (files.empty() && options.resume) {
+        std::cerr << options.out_dir.string() << ": no checkpoint to resume from (" << dir.string()
+                  << " holds none)\n";
+        return kExitBadInput;
+      }
+      for (std::size_t k = 0; k < files.size() && !checkpoint; ++k) {
+        std::string reason;
+        try {
+          Checkpoint c = read_checkpoint(files[k]);
+          scene::LoadedScene candidate = resumed_scene(options, c, files[k]);
+          reason = refuse_reason(c, candidate);
+          if (reason.empty()) {
+            checkpoint = std::move(c);
+            loaded = std::move(candidate);
+            std::fprintf(stderr, "resume     from %s (step %llu, t = %.6g s)\n", files[k].c_str(),
+                         static_cast<unsigned long long>(checkpoint->step), checkpoint->time_s);
+          }
+        } catch (const CheckpointError& e) {
+          reason = e.what();
+        }
+        if (!reason.empty()) {
+          std::fprintf(stderr, "%s: refused: %s\n", files[k].c_str(), reason.c_str());
+          if (k + 1 < files.size()) {
+            std::fprintf(stderr, "resume     falling back to %s\n", files[k + 1].c_str());
+          }
+        }
+      }
+      if (!checkpoint && !files.empty()) {
+        std::cerr << options.out_dir.string()
+                  << ": no usable checkpoint; nothing in it was changed\n";
+        return kExitBadInput;
+      }
+    }
   } catch (const scene::SceneError& e) {
     std::cerr << e.what() << (std::string(e.what()).ends_with('\n') ? "" : "\n");
     return kExitBadInput;
   }
   install_stop_signal_handlers();
-  RunSession session(options, std::move(loaded));
+  RunSession session(options, std::move(loaded), std::move(checkpoint));
   return session.run();
 }
 
-RunSession::RunSession(const RunOptions& options, scene::LoadedScene scene)
-    : options_(options), loaded_(std::move(scene)), scene_(loaded_.scene) {
+RunSession::RunSession(const RunOptions& options, scene::LoadedScene scene,
+                       std::optional<Checkpoint> resume_from)
+    : options_(options), loaded_(std::move(scene)), scene_(loaded_.scene),
+      resume_from_(std::move(resume_from)) {
   coupled_ = scene_.has_fluid();
   if (options_.out_dir.empty()) options_.out_dir = fs::path("out") / loaded_.path.stem();
   peclet_ = peclet_number(scene_);
   calibration_ = std::make_unique<CalibrationSummary>(scene_);
-  // A packing file named in the scene is relative to the scene file; the DEM gets it absolute.
-  if (loaded_.scene.dem().has_packing_file()) {
-    const fs::path p(loaded_.scene.dem().packing_file().path());
-    if (p.is_relative()) {
-      loaded_.scene.mutable_dem()->mutable_packing_file()->set_path(
-          fs::absolute(loaded_.path.parent_path() / p).lexically_normal().string());
-    }
-  }
+  make_paths_absolute(loaded_);
+  checkpoints_ = !options_.no_checkpoints;
+  next_checkpoint_time_s_ = scene_.output().checkpoint_interval_s();
 }
 
 RunSession::~RunSession() {
@@ -247,7 +344,32 @@ void RunSession::open_output() {
     attributes["fluid_module"] = fluid_->hello.module_name() + " " + fluid_->hello.module_version();
     attributes["fluid_model"] = fluid_->init.model();
   }
-  run_file_ = std::make_unique<RunFile>(options_.out_dir, loaded_.effective_text(), attributes);
+  if (resume_from_) {
+    // Cut back to what the checkpoint recorded: rows and frames after it are written again.
+    const state::StateArchive& c = resume_from_->parts.at("coupler");
+    RunFileExtent extent;
+    const auto counts = c.values("output_extent", 2);
+    extent.timeseries_rows = static_cast<std::uint64_t>(counts[0]);
+    extent.frames = static_cast<std::uint64_t>(counts[1]);
+    auto lines = [](const std::string& text) {
+      std::vector<std::string> out;
+      for (std::size_t start = 0, end; (end = text.find('\n', start)) != std::string::npos;
+           start = end + 1) {
+        out.push_back(text.substr(start, end - start));
+      }
+      return out;
+    };
+    extent.timeseries_columns = lines(c.text("timeseries_columns"));
+    for (const std::string& table : lines(c.text("tables"))) {
+      extent.table_rows[table] = c.scalar_as<std::uint64_t>("table_rows:" + table);
+      extent.table_columns[table] = lines(c.text("table_columns:" + table));
+    }
+    std::vector<std::string> field_order = dem_frame_fields_;
+    field_order.insert(field_order.end(), fluid_frame_fields_.begin(), fluid_frame_fields_.end());
+    run_file_ = RunFile::resume(options_.out_dir, extent, field_order, attributes);
+  } else {
+    run_file_ = std::make_unique<RunFile>(options_.out_dir, loaded_.effective_text(), attributes);
+  }
   summary_.set("scene", loaded_.path.string());
   summary_.set("title", scene_.title());
   summary_.set("transport", std::string(transport_name(options_.transport)));
@@ -323,6 +445,10 @@ int RunSession::run() {
       if (l.name == "pore_fluid_stiffness") stiffness_limit_s = l.dt_max_s;
     }
     accuracy_line_ = expected_error_line(scene_, plan_, dem_limit_s, stiffness_limit_s);
+    if (resume_from_) {
+      check_resume_scene();
+      restore_from_checkpoint();  // before run.h5 is touched: a refusal leaves it whole
+    }
   } catch (const PlanError& e) {
     std::cerr << loaded_.path.string() << ": refused: " << e.what() << "\n";
     return kExitBadInput;
@@ -410,7 +536,7 @@ int RunSession::stop_on_guard(const GuardStop& stop) {
 }
 
 int RunSession::finish(int code, const std::string& status, const std::string& reason) {
-  const double wall = progress_ ? progress_->elapsed_s() : 0.0;
+  const double wall = wall_before_s_ + (progress_ ? progress_->elapsed_s() : 0.0);
   summary_.set("status", status);
   cutting_->write(summary_);
   calibration_->write(summary_);

@@ -13,6 +13,7 @@
 
 #include <zmq.hpp>
 
+#include "output/checkpoint_file.hpp"
 #include "output/run_file.hpp"
 #include "output/summary_json.hpp"
 #include "run/calibration_summary.hpp"
@@ -49,14 +50,34 @@ struct RunOptions {
   std::string dem_endpoint = "tcp://127.0.0.1:5555";    ///< tcp only
   std::string fluid_endpoint = "tcp://127.0.0.1:5556";  ///< tcp only
   std::filesystem::path module_dir;    ///< where dem_module and fluid_module are (the coupler's dir)
+  /// Wall time between two checkpoints [s]; 0: none on wall time.
+  double checkpoint_every_s = 600.0;
+  /// No checkpoint at all (nor at SIGUSR1, SIGTERM or the end): signals stop at once.
+  bool no_checkpoints = false;
+  /// `coupler resume OUT`: continue the run in out_dir from its newest valid checkpoint, with the
+  /// scene the checkpoint holds (scene_path unused; `overrides` may change what cannot change
+  /// the physics).
+  bool resume = false;
+  /// `coupler run CASE --resume`: as `resume` when out_dir holds a checkpoint, else a fresh run.
+  bool resume_if_possible = false;
 };
 
 /// Runs the scene and returns the exit code. Messages go to stderr, the result lines to stdout.
 int run_scene(const RunOptions& options);
 
+/// The scene fields a resumed run may change (end time, output cadence, checkpoint settings,
+/// title, timeout), as dotted paths.
+const std::vector<std::string>& resume_allowed_fields();
+/// How `now` differs from `saved` outside resume_allowed_fields(), one line per field (empty:
+/// the same physics); the allowed differences go into `allowed` as "path: old -> new".
+std::vector<std::string> scene_differences(const rockcut::Scene& saved, const rockcut::Scene& now,
+                                           std::vector<std::string>* allowed);
+
 class RunSession {
  public:
-  RunSession(const RunOptions& options, scene::LoadedScene scene);
+  /// `resume_from`: the checkpoint a resumed run continues from (already read and verified).
+  RunSession(const RunOptions& options, scene::LoadedScene scene,
+             std::optional<Checkpoint> resume_from = std::nullopt);
   ~RunSession();
   int run();
 
@@ -78,6 +99,21 @@ class RunSession {
   /// Writes the last frame and the guard into the summary; returns the exit code.
   int stop_on_guard(const GuardStop& stop);
   std::filesystem::path module_executable(const std::string& from_scene, const char* name) const;
+
+  // run_checkpoint.cpp: checkpoint and restart
+  /// Writes a checkpoint now (between two exchanges, no forces held).
+  void write_checkpoint_now(const char* why);
+  /// After an exchange: writes a checkpoint if one is due (simulated or wall time, SIGUSR1, a
+  /// stop), or asks the next exchange to complete its step first; throws Interrupted after the
+  /// checkpoint of a stop.
+  void maybe_checkpoint();
+  void save_state(state::StateArchive& a) const;
+  void load_state(const state::StateArchive& a);
+  /// Refuses a checkpoint whose scene differs from this one in what can change the physics;
+  /// reports the allowed differences.
+  void check_resume_scene() const;
+  /// Hands the saved states back to the modules and to the coupler.
+  void restore_from_checkpoint();
 
   // run_loop.cpp: the clock
   void loop();
@@ -130,11 +166,23 @@ class RunSession {
   Summary summary_;
   std::unique_ptr<Progress> progress_;
 
+  // Checkpoints.
+  std::optional<Checkpoint> resume_from_;
+  bool checkpoints_ = true;          // off with --no-checkpoints or a module that cannot save
+  bool checkpoint_due_ = false;      // the next exchange completes its step for a checkpoint
+  bool checkpoint_requested_ = false;  // SIGUSR1 seen, checkpoint not yet written
+  double next_checkpoint_time_s_ = 0.0;  // simulated time of the next one (interval > 0)
+  double wall_at_last_checkpoint_s_ = 0.0;
+  double wall_before_s_ = 0.0;  // wall time of the earlier parts of a resumed run
+
   // Clock state (advanced by the loop).
   double time_s_ = 0.0;
   std::uint64_t step_ = 0;
   std::uint64_t next_series_step_ = 0;
   std::uint64_t next_frame_index_ = 0;
+  // The steps of the last row and frame written: the end of a run adds one only where none is.
+  std::uint64_t row_step_ = static_cast<std::uint64_t>(-1);
+  std::uint64_t frame_step_ = static_cast<std::uint64_t>(-1);
   std::uint64_t exchanges_ = 0;
   bool forces_held_ = false;  // fluid_reply_ holds forces for the next Advance to apply first
   std::uint64_t bytes_exchanged_ = 0;

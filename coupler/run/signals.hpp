@@ -1,5 +1,8 @@
-// SIGINT and SIGTERM ask the run to stop; the run loop notices at the next wait and shuts the
-// modules down with the output closed.
+// Signals a run obeys. SIGINT and SIGTERM ask the run to stop: while the loop runs (graceful
+// stops on), it completes the exchange in progress, writes a checkpoint and stops with status
+// "interrupted"; a second one, or one during start-up, stops at the next wait without a checkpoint.
+// SIGUSR1 (what a scheduler sends before a time limit, e.g. Slurm's --signal=B:USR1@120) asks for
+// a checkpoint, after which the run carries on.
 #pragma once
 
 namespace rockcut::coupler {
@@ -8,5 +11,11 @@ namespace rockcut::coupler {
 void install_stop_signal_handlers();
 /// The signal that asked to stop, or 0.
 int stop_signal();
+/// True when waiting must end now: a stop was asked for outside a graceful stop, or twice.
+bool interrupt_now();
+/// While on, the first SIGINT/SIGTERM is left to the run loop (checkpoint, then stop).
+void set_graceful_stop(bool on);
+/// True once per SIGUSR1 received since the last call.
+bool take_checkpoint_request();
 
 }  // namespace rockcut::coupler

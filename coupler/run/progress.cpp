@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+
 namespace rockcut::coupler {
 
 namespace {
@@ -10,9 +12,11 @@ constexpr std::chrono::milliseconds kTtyPeriod{250};
 constexpr std::chrono::milliseconds kLogPeriod{10000};
 }  // namespace
 
-Progress::Progress(double end_time_s, std::uint64_t total_steps, std::FILE* stream)
+Progress::Progress(double end_time_s, std::uint64_t total_steps, std::FILE* stream,
+                   std::uint64_t start_step)
     : end_time_s_(end_time_s),
       total_steps_(total_steps),
+      start_step_(start_step),
       stream_(stream),
       tty_(isatty(fileno(stream)) != 0),
       start_(std::chrono::steady_clock::now()),
@@ -33,7 +37,10 @@ void Progress::finish(double time_s, std::uint64_t step) { print(time_s, step, t
 
 void Progress::print(double time_s, std::uint64_t step, bool final) {
   const double wall = elapsed_s();
-  const double fraction = total_steps_ ? static_cast<double>(step) / total_steps_ : 1.0;
+  const double fraction =
+      total_steps_ > start_step_
+          ? static_cast<double>(step - std::min(step, start_step_)) / (total_steps_ - start_step_)
+          : 1.0;
   const double eta = fraction > 0 ? wall * (1.0 - fraction) / fraction : 0.0;
   std::fprintf(stream_, "%st = %.4g / %.4g s  step %llu / %llu  wall %.1f s  ETA %.1f s%s",
                tty_ ? "\r" : "", time_s, end_time_s_, static_cast<unsigned long long>(step),

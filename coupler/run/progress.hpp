@@ -10,7 +10,9 @@ namespace rockcut::coupler {
 
 class Progress {
  public:
-  Progress(double end_time_s, std::uint64_t total_steps, std::FILE* stream);
+  /// `start_step`: where a resumed run starts (the ETA extrapolates from the steps since).
+  Progress(double end_time_s, std::uint64_t total_steps, std::FILE* stream,
+           std::uint64_t start_step = 0);
   /// Cheap when nothing is due: compares the clock only.
   void update(double time_s, std::uint64_t step);
   /// Prints the final line (and a newline on a terminal).
@@ -22,6 +24,7 @@ class Progress {
 
   double end_time_s_;
   std::uint64_t total_steps_;
+  std::uint64_t start_step_;
   std::FILE* stream_;
   bool tty_;
   std::chrono::steady_clock::time_point start_;

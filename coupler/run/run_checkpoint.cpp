@@ -174,6 +174,7 @@ void RunSession::check_resume_scene() const {
 }
 
 void RunSession::restore_from_checkpoint() {
+  const auto start = clock_type::now();
   Checkpoint& c = *resume_from_;
   auto hand_back = [](ModuleInfo& module, wire::Message& request, wire::Message& reply,
                       const state::StateArchive& part, const char* what) {
@@ -193,6 +194,10 @@ void RunSession::restore_from_checkpoint() {
   hand_back(dem_, request_, reply_, c.parts.at("dem"), "dem");
   if (fluid_) hand_back(*fluid_, fluid_request_, fluid_reply_, c.parts.at("fluid"), "fluid");
   load_state(c.parts.at("coupler"));
+  std::size_t bytes = 0;
+  for (const auto& [name, part] : c.parts) bytes += part.payload_bytes();
+  std::fprintf(stderr, "resume     %.3g MB of state handed back to the modules in %.3g s\n",
+               bytes / 1e6, std::chrono::duration<double>(clock_type::now() - start).count());
 }
 
 void RunSession::write_checkpoint_now(const char* why) {

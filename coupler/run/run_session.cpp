@@ -110,24 +110,30 @@ int run_scene(const RunOptions& options_in) {
                   << " holds none)\n";
         return kExitBadInput;
       }
-      for (std::size_t k = 0; k < files.size() && !checkpoint; ++k) {
+      bool damaged_only = true;  // a refused scene or version holds for the older ones too
+      for (std::size_t k = 0; k < files.size() && !checkpoint && damaged_only; ++k) {
         std::string reason;
         try {
+          const auto read_start = std::chrono::steady_clock::now();
           Checkpoint c = read_checkpoint(files[k]);
+          const double read_s =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
           scene::LoadedScene candidate = resumed_scene(options, c, files[k]);
           reason = refuse_reason(c, candidate);
+          damaged_only = reason.empty();
           if (reason.empty()) {
             checkpoint = std::move(c);
             loaded = std::move(candidate);
-            std::fprintf(stderr, "resume     from %s (step %llu, t = %.6g s)\n", files[k].c_str(),
-                         static_cast<unsigned long long>(checkpoint->step), checkpoint->time_s);
+            std::fprintf(stderr, "resume     from %s (step %llu, t = %.6g s; read in %.3g s)\n",
+                         files[k].c_str(), static_cast<unsigned long long>(checkpoint->step),
+                         checkpoint->time_s, read_s);
           }
         } catch (const CheckpointError& e) {
           reason = e.what();
         }
         if (!reason.empty()) {
           std::fprintf(stderr, "%s: refused: %s\n", files[k].c_str(), reason.c_str());
-          if (k + 1 < files.size()) {
+          if (k + 1 < files.size() && damaged_only) {
             std::fprintf(stderr, "resume     falling back to %s\n", files[k + 1].c_str());
           }
         }
@@ -472,7 +478,8 @@ int RunSession::run() {
     std::cerr << "error: cannot write output in " << options_.out_dir << ": " << e.what() << "\n";
     return kExitBadInput;
   }
-  progress_ = std::make_unique<Progress>(scene_.time().end_time_s(), plan_.total_steps, stderr);
+  progress_ = std::make_unique<Progress>(scene_.time().end_time_s(), plan_.total_steps, stderr,
+                                         step_);
   try {
     loop();
   } catch (const wire::ModuleFailure& e) {

@@ -27,29 +27,40 @@ void RunSession::loop() {
   }
 
   const double frame_interval = scene_.output().frame_interval_s();
+  bool end_checkpoint_written = false;
+  // The end-of-run checkpoint is taken before the advance that the end cuts short and before
+  // the last row and frame that only the end asks for: a run continued from it to a later end
+  // time exchanges at the same steps and records what an uninterrupted run does.
+  auto end_checkpoint = [&] {
+    if (checkpoints_ && !end_checkpoint_written) write_checkpoint_now("end of run");
+    end_checkpoint_written = true;
+  };
   while (step_ < plan_.total_steps && !calibration_->test_over()) {
     const std::uint64_t remaining = plan_.total_steps - step_;
-    if (coupled_) {
-      exchange(static_cast<unsigned>(std::min<std::uint64_t>(plan_.coupling_interval, remaining)),
-               false);
-    } else {
-      // Dry: run straight to the next output event; no message per step.
-      std::uint64_t chunk = std::min(remaining, next_series_step_ - step_);
+    // The advance the run would make without its end: N steps, or (dry) up to the next output
+    // event, with no message per step.
+    std::uint64_t regular = plan_.coupling_interval;
+    if (!coupled_) {
+      regular = next_series_step_ - step_;
       if (frame_interval > 0) {
         const double next_frame_time = next_frame_index_ * frame_interval;
         const double steps_to_frame = std::ceil((next_frame_time - time_s_) / plan_.dt_s - 1e-9);
-        chunk = std::min<std::uint64_t>(chunk, std::max(1.0, steps_to_frame));
+        regular = std::min<std::uint64_t>(regular, std::max(1.0, steps_to_frame));
       }
-      chunk = std::clamp<std::uint64_t>(chunk, 1, 1u << 30);
-      advance_dry(static_cast<unsigned>(chunk));
+      regular = std::clamp<std::uint64_t>(regular, 1, 1u << 30);
+    }
+    if (remaining < regular) end_checkpoint();
+    const auto steps = static_cast<unsigned>(std::min(regular, remaining));
+    if (coupled_) {
+      exchange(steps, false);
+    } else {
+      advance_dry(steps);
     }
     maybe_record(false);
     progress_->update(time_s_, step_);
     maybe_checkpoint();
   }
-  // The end-of-run checkpoint comes before the last row and frame that only the end asks for:
-  // a run continued from it (a later end time) records what an uninterrupted one does.
-  if (checkpoints_) write_checkpoint_now("end of run");
+  end_checkpoint();
   set_graceful_stop(false);
   maybe_record(true);
   if (calibration_->test_over()) {
@@ -184,7 +195,11 @@ bool RunSession::frame_due(double time_s) const {
 }
 
 bool RunSession::record_due(std::uint64_t step, double time_s) const {
-  return step >= plan_.total_steps || series_due(step) || frame_due(time_s) || checkpoint_due_;
+  // The exchange before a last one shorter than N completes its step too: the end-of-run
+  // checkpoint is taken there.
+  return step >= plan_.total_steps || plan_.total_steps - step < plan_.coupling_interval ||
+         series_due(step) ||
+         frame_due(time_s) || checkpoint_due_;
 }
 
 void RunSession::maybe_record(bool last) {

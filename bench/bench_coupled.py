@@ -56,7 +56,7 @@ def fluid_cost_in_dem_steps(interval, fluid_share):
     An exchange covers N DEM steps. If the wall per exchange is N d (the DEM, transport and
     coupler: everything but the fluid's busy time) plus c d (the fluid's busy time), the fluid's
     share is s = c / (N + c), so c = N s / (1 - s). c measures the fluid's step against the DEM's
-    independently of N: the session-28 shares at N = 3, 5, 7 and 10 (bench/README.md) all give
+    independently of N: the measured shares at N = 3, 5, 7 and 10 (bench/README.md) all give
     c = 2.3-2.4 inproc.
     """
     if not 0 <= fluid_share < 1:

@@ -43,12 +43,9 @@ int validate(const fs::path& scene_path, const std::vector<std::string>& overrid
 }  // namespace
 
 int main(int argc, char** argv) {
-  // For the module processes this coupler starts (transport ipc): their idle OpenMP threads sleep
-  // instead of spinning, since the DEM and the fluid share the cores. Coupled paper-scale cut over
-  // ipc (bench/bench_coupled.py, 2 + 2 threads on 2 cores): 42 and 30 s passive, 55 and 48 s with
-  // libgomp's default spinning. libgomp reads the variable when it loads, before main, so this
-  // does not reach the coupler's own teams (transport inproc): those keep libgomp's default,
-  // which measured the same as passive there (27.9, 26.7 s against 32.8, 25.9 s). An explicit
+  // The module processes this coupler starts (transport ipc) share the cores, so their idle
+  // OpenMP threads sleep instead of spinning (docs/performance.md, "Threads"). libgomp reads the
+  // variable before main, so the coupler's own teams (inproc) keep libgomp's default. An explicit
   // OMP_WAIT_POLICY or GOMP_SPINCOUNT in the environment still wins.
   setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
   rockcut::wire::tune_allocator_for_bulk_frames();

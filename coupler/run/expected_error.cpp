@@ -15,8 +15,7 @@ struct LadderPoint {
   double value;
   double force_error;   ///< relative error of the mean horizontal force
 };
-// Set H, the default rock since session 27, study of session 28: seeds 1-4 and 14 mm of steady
-// cut. The seed scatter of each mean is 6-14 % (docs/accuracy.md), so errors below about 15 % are
+// The default rock (set H): seeds 1-4 and 14 mm of steady cut. The seed scatter of each mean is 6-14 % (docs/accuracy.md), so errors below about 15 % are
 // upper bounds more than estimates.
 constexpr LadderPoint kDtSafety[] = {{0.4, 0.09}, {0.2, 0.08}, {0.1, 0.08}, {0.05, 0.13},
                                      {0.025, 0.0}};

@@ -37,7 +37,7 @@ class FluidService final : public wire::ModuleHandler {
   // "displacement" is x^n - x^{n-N}, the difference of this and the last exchange's positions,
   // which the fluid receives anyway. It derives it here instead of asking the DEM for it: the
   // same subtraction of the same doubles, so the same bits, and a third fewer bytes on the wire
-  // each way (bench/README.md, session 20).
+  // each way.
   bool derive_displacement_ = false;
   std::vector<double> previous_position_;  ///< positions of the last exchange (at first: Init's)
   std::vector<double> displacement_;

@@ -3,7 +3,7 @@
 // solves one sparse symmetric positive definite system (sp/implicit_system.hpp, which also says how
 // the cavitation clamp of eq. 22 is imposed). Instead of a stability limit it reports an accuracy
 // limit, dt <= fluid.implicit.max_diffusion_number h^2 / D, so that the coupler's choice of the
-// fluid step stays where the error study (docs/fluid_verification.md) measured it.
+// fluid step stays where the error study (docs/verification.md) measured it.
 #pragma once
 
 #include "sp/implicit_system.hpp"

@@ -16,7 +16,7 @@
 // is active only while the particle is clamped, the backward-Euler form of "dp/dt = max(dp/dt, 0)
 // at p = p_min". It is solved by a primal-dual active set: clamp the particles that the solve
 // takes below p_min, release clamped particles whose unconstrained equation would raise them
-// (positive residual), and repeat until the set no longer changes (docs/fluid_model.md).
+// (positive residual), and repeat until the set no longer changes (docs/model.md).
 //
 // Memory: the matrix pattern (the geometry's pairs inside the support) is rebuilt only when the
 // geometry is recomputed; each step writes its values in place. Eigen's conjugate gradient

@@ -23,27 +23,16 @@
 
 namespace rockcut::fluid::sp {
 
-/// Lagged fluid force (N > 1): the fluid force is computed from the positions at an exchange and
-/// held for the N DEM steps of the fluid step. Undrained, the pore fluid stiffens each grain's
-/// contacts by about k_f = alpha M (eq. 14: dp = -alpha M eps_v over a grain's neighbourhood, and
-/// eq. 21 turns it into a force on an area pi r^2). A spring force lagged by tau ~ dt_f / 2 is a
-/// negative damping: it feeds a grain's vibration energy at the rate k_f dt_f / (2 m). Measured
-/// (docs/fluid_model.md): an undamped bonded block with a 1 Pa pressure pulse grows by 1e3 per
-/// 0.5 ms at N = 5 (rate 1.4e4 /s against k_f dt_f / (2 m) = 1.3e4 /s) and is stable at N = 1,
-/// where nothing lags. Local damping (dem.local_damping) takes the energy out again: the reduced
-/// saturated cut (damping 0.7) runs like the dry one at dt_f = 20 us and blows up at 67 us, i.e.
-/// critical between 8.5 and 28 times sqrt(m_min / (alpha M)) at 0 m. At 0 m the pore water cavitates
-/// wherever the rock dilates, which takes the fluid's stiffness away in tension; at 2000 m it does
-/// not, and the cut is less stable: with dt_f = 2.1 sqrt(m_min / (alpha M)) (C = 3, N = 74) the
-/// fluid put more energy into the grains than the tool had done in 2 of 3 seeds (the runtime guard,
-/// dem.guards, stopped them at 10 and 15 ms); at C = 1.5 (N = 37) the fluid's net work stayed
-/// negative throughout in those seeds. The limit is
+/// Lagged fluid force (N > 1): the force computed at an exchange is held for the N DEM steps of
+/// the fluid step. Undrained, the pore fluid stiffens each grain by about k_f = alpha M (eqs. 14
+/// and 21), and a spring force lagged by ~dt_f / 2 is a negative damping that local damping must
+/// outweigh. Hence the limit
 ///   dt_f <= kFluidStiffnessC * local_damping * sqrt(m_min / (alpha M)),
-/// 1.05 sqrt(m_min / (alpha M)) at damping 0.7, a factor 2 below the smallest unstable value
-/// measured; it binds only N > 1 (N = 1 is always allowed, also without damping).
+/// a factor 2 below the smallest unstable step measured (2000 m, damping 0.7; docs/model.md). It
+/// binds only N > 1: N = 1 is always allowed, also without damping.
 inline constexpr double kFluidStiffnessC = 1.5;
 
-/// A local geometry refresh (docs/fluid_model.md, "Reusing the geometry") moves the particles that
+/// A local geometry refresh (docs/model.md, "Reusing the geometry") moves the particles that
 /// have moved more than this fraction of fluid.geometry_refresh_distance, not only the one that
 /// crossed it: the particles near the tool move alike, and taking them along with the first
 /// postpones the next refresh, at the cost of a few more rows.

@@ -2,12 +2,9 @@
 // adjoint pressure force of sp/operators.hpp).
 //
 // Between two geometry updates (SpParams::geometry_refresh) the SP geometry is fixed, and so the
-// step is a fixed sparse linear map: the corrected divergence, the Laplacian and the adjoint force
-// are sums over the pairs whose coefficients depend on the geometry alone. In a cut the geometry
-// is recomputed about once per 10 exchanges (session 13's paper-scale run: 36,710 updates in
-// 378,670 exchanges), so computing the coefficients once per geometry and streaming them in the
-// step takes the kernel arithmetic (the L_i^{-1} products, F_ij (x_j - x_i)) and the gathers of
-// x_j, V_j and L_j^{-1} out of the step's two passes over the pairs.
+// step is a fixed sparse linear map. Its per-pair coefficients are computed once per geometry and
+// streamed by the step's two passes, which then need no kernel arithmetic and no gathers of x_j,
+// V_j or L_j^{-1}. In a cut the geometry changes about once per 10 exchanges.
 //
 // Per pair (i, j) of row i, at the same index k as Geometry::neighbours:
 //   c_k   = B_ij = -V_j F_ij L_i^{-1} (x_j - x_i)   (eq. 17: div_i = sum_k c_k . (v_j - v_i))
@@ -18,16 +15,10 @@
 // negative transpose of the divergence and the adjoint energy identity holds to the rounding of
 // the sums, as with the operators.
 //
-// The coefficients are stored as floats (widened to doubles in the passes, which sum in double):
-// at paper scale the passes stream them for 1.3 million pairs (58,000 particles), and floats, each
-// pair widened by one cvtps2pd, take the step from 48 to 28 bytes per pair (1.3 times faster;
-// bench/README.md, session 16). Fewer bytes no longer pay: 16-bit coefficients (14 bytes) made the
-// passes 1.3-1.5 times slower, their widening costing more instructions than the bytes they saved
-// (bench/README.md, session 18), nor does recomputing c, lam and t in the passes from F_ij alone
-// (8 bytes per pair per pass): twice the instructions gave the coupled fluid 1.3 times the busy
-// time (session 25). The rounding moves each coefficient by at most 2^-24 = 6e-8 of itself; the
-// geometry they come from is itself reused until a particle has moved 0.002 h, an operator error
-// of ~1e-3 (docs/fluid_model.md, "Reusing the geometry").
+// The coefficients are stored as floats (28 bytes per pair over both passes instead of 48) and
+// widened by one cvtps2pd; the passes sum in double. Rounding moves each coefficient by at most
+// 2^-24 of itself, far below the ~1e-3 operator error of the reused geometry (docs/model.md).
+// Alternatives measured and rejected are listed in docs/performance.md.
 //
 // The results equal the operators' to that rounding (tests/fluid/step_operator_test.cpp).
 #pragma once

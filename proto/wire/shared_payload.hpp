@@ -2,8 +2,7 @@
 //
 // Why: over ipc:// every array frame crosses the kernel twice per hop (into the socket, out of it)
 // and is moved by the ZeroMQ I/O threads of both sides, on the two cores the modules compute on.
-// A whole paper-scale cut spent 3.9 ms more per exchange over ipc than inproc for it (bench/README.md,
-// session 20). With the arrays in shared memory a message carries only its envelope: the sending
+// At paper scale that cost an exchange several ms over ipc (bench/README.md, bench_exchange). With the arrays in shared memory a message carries only its envelope: the sending
 // module copies an array once into its segment (as it copied it into a frame before), the coupler
 // forwards the header without touching the values, and the receiver reads them in place.
 //

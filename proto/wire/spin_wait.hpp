@@ -7,10 +7,9 @@
 // On by default on two or more cores (kDefaultSpinUs); ROCKCUT_WIRE_SPIN_US (microseconds, 0 =
 // sleep at once) overrides it, like GOMP_SPINCOUNT for OpenMP. The poll stops early when the core
 // is wanted: a poll that comes back more than kContendedPollUs after the last one means the yield
-// gave the core to a thread with work, e.g. of another run sharing the cores. Measured
-// (bench/README.md, session 11): the default scene 63-64 s without polling, 52-54 s with 200 us;
-// two 10 mm reduced cuts side by side 6.9-7.8 s each without, 8.3-9.0 s with (6.1-6.6 against
-// 8.0-9.3 s when the poll did not stop early), so scripts that run jobs side by side set 0.
+// gave the core to a thread with work, e.g. of another run sharing the cores. Polling shortens
+// the default scene by a sixth and lengthens runs that share the cores (docs/performance.md,
+// "Polling"), so the tools that run jobs side by side set 0.
 #pragma once
 
 #include <zmq.hpp>

@@ -37,7 +37,7 @@ TEST(ExpectedError, InterpolatesBetweenStudiedSettingsAndCombinesByRootSumSquare
   const double n_only = *expected_force_error({0.025, 1.0, 1.67, 0.5}, nullptr);
   const double both = *expected_force_error({0.2, 1.0, 1.67, 0.5}, nullptr);
   EXPECT_NEAR(both, std::hypot(at_02, n_only), 1e-12);
-  // The study's values at its settings (docs/accuracy.md, set H, sessions 28-29): 8 % at
+  // The study's values at its settings (docs/accuracy.md, set H): 8 % at
   // dt_safety 0.2, 54 % at the largest stable N, 9 % at the coupler's N = 3 (0.211 of the
   // stiffness limit, sixteen seeds), and between N = 5 (10 %) and N = 7 (33 %) linear in the log
   // of N.

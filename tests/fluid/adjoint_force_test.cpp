@@ -100,7 +100,7 @@ TEST(AdjointForce, ConservesMomentumAndMatchesTheGradientInside) {
   // q = 0 on this random packing (3 volume iterations, A = phi V as the model uses) the RMS
   // error over the interior is 0.18 of A g (0.28 with A = pi r^2, whose jumps from grain to grain
   // add noise): the bound is 0.25. Far from q = 0 the zeroth-order term dominates (RMS 1.6 at
-  // |q| = 10 |g| h): the adjoint form trades this noise for stability (docs/fluid_model.md).
+  // |q| = 10 |g| h): the adjoint form trades this noise for stability (docs/model.md).
   const Initialised s(random_packing(), 0.0015);
   const std::size_t n = s.particles.size();
   const double gx = 3e8, gy = -1e8;  // [Pa/m]

@@ -1,4 +1,4 @@
-// The local geometry refresh (sp::refresh_geometry, docs/fluid_model.md "Reusing the geometry"):
+// The local geometry refresh (sp::refresh_geometry, docs/model.md "Reusing the geometry"):
 // moving only the particles that moved and recomputing the rings of rows that depend on them must
 // give, bit for bit, the geometry and step coefficients that a full update computes on the same
 // configuration X'. Exact equality is the right tolerance: every row is computed alone by the same

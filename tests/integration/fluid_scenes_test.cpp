@@ -1,6 +1,6 @@
 // End-to-end runs of the fluid-only verification scenes (cases/verification/terzaghi,
 // gaussian_pulse, undrained_step) with both SP models: the error bounds come from the error study
-// at the committed resolutions (docs/fluid_verification.md), and the stored pressures are checked
+// at the committed resolutions (docs/verification.md), and the stored pressures are checked
 // again here against the analytical solutions, computed independently of the coupler's code.
 #include <gtest/gtest.h>
 

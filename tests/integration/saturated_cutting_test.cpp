@@ -20,14 +20,17 @@ namespace {
 namespace fs = std::filesystem;
 using coupler::Summary;
 
-// saturated_reduced.pbtxt with the node boxes 10 mm wide (written once per test directory).
+// saturated_reduced.pbtxt with the node boxes 10 mm wide (written once per test directory): a scene
+// that starts from it (`base:`) and names the three nodes again (a repeated field replaces the
+// base's list).
 fs::path small_scene(const fs::path& dir) {
-  std::string text = read_file(source("cases/cutting/saturated_reduced.pbtxt"));
-  for (std::size_t at; (at = text.find("size_m: 0.005")) != std::string::npos;) {
-    text.replace(at, 13, "size_m: 0.01");
-  }
   const fs::path scene = dir / "saturated_small.pbtxt";
-  std::ofstream(scene) << text;
+  std::ofstream(scene) << "base: \"" << source("cases/cutting/saturated_reduced.pbtxt") << "\"\n"
+                       << "dem { tool {\n"
+                          "  pressure_nodes { name: \"p1\" size_m: 0.01 }\n"
+                          "  pressure_nodes { name: \"p2\" offset_m { x: 0.0125 y: 0.01 } size_m: 0.01 }\n"
+                          "  pressure_nodes { name: \"p3\" offset_m { x: 0.03 } size_m: 0.01 }\n"
+                          "} }\n";
   return scene;
 }
 

@@ -1,6 +1,7 @@
-// The reader side of summary.json: a strict parser for one flat JSON object.
+// The reader side of summary.json, for the tests: a strict parser for one flat JSON object.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -17,5 +18,9 @@ namespace rockcut::coupler {
 /// including nested objects or arrays.
 std::vector<std::pair<std::string, SummaryValue>> parse_flat_json_object(
     std::string_view text, const std::string& source);
+
+/// Reads a flat JSON object written by Summary::write() (numbers with '.', 'e' or 'null' become
+/// double, other integers int64). Throws std::runtime_error on malformed input.
+Summary read_summary(const std::filesystem::path& file);
 
 }  // namespace rockcut::coupler

@@ -1,8 +1,10 @@
-#include "output/summary_parser.hpp"
+#include "support/summary_parser.hpp"
 
 #include <charconv>
 #include <cstdint>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace rockcut::coupler {
@@ -226,6 +228,19 @@ class Parser {
 std::vector<std::pair<std::string, SummaryValue>> parse_flat_json_object(
     std::string_view text, const std::string& source) {
   return Parser(text, source).object();
+}
+
+Summary read_summary(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error(file.string() + ": cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(file.string() + ": read error");
+  Summary summary;
+  for (auto& [key, value] : parse_flat_json_object(buffer.str(), file.string())) {
+    summary.set(key, std::move(value));
+  }
+  return summary;
 }
 
 }  // namespace rockcut::coupler

@@ -1,7 +1,7 @@
 // coupler: the command line of rockcut.
 //   coupler run CASE [--out DIR] [--transport ipc|inproc|tcp] [--set path=value ...]
 //   coupler resume OUT [--set path=value ...]    continue a run from its newest valid checkpoint
-//   coupler validate CASE [--set path=value ...]
+//   coupler validate CASE [--set path=value ...] [--print]
 #include <unistd.h>
 
 #include <cstdlib>
@@ -25,7 +25,7 @@ fs::path own_directory() {
   return ec ? fs::current_path() : exe.parent_path();
 }
 
-int validate(const fs::path& scene_path, const std::vector<std::string>& overrides) {
+int validate(const fs::path& scene_path, const std::vector<std::string>& overrides, bool print) {
   try {
     const auto loaded = rockcut::scene::load_scene(scene_path, overrides);
     const rockcut::Scene& s = loaded.scene;
@@ -33,6 +33,7 @@ int validate(const fs::path& scene_path, const std::vector<std::string>& overrid
                                                                          s.fluid().model()
                                                                    : std::string("dry"))
               << ", end time " << s.time().end_time_s() << " s)\n";
+    if (print) std::cout << loaded.effective_text();
     return 0;
   } catch (const rockcut::scene::SceneError& e) {
     std::cerr << e.what() << (std::string(e.what()).ends_with('\n') ? "" : "\n");
@@ -113,13 +114,17 @@ int main(int argc, char** argv) {
   val->add_option("CASE", scene_path, "Scene file (protobuf text format)")->required();
   val->add_option("--set", overrides, "Override a scalar scene field: dotted.path=value")
       ->allow_extra_args(false);
+  bool print = false;
+  val->add_flag("--print", print,
+                "Also print the effective scene (its bases merged, the overrides applied), as run.h5 "
+                "stores it");
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  if (val->parsed()) return validate(scene_path, overrides);
+  if (val->parsed()) return validate(scene_path, overrides, print);
   if (resume->parsed()) {
     resume_options.out_dir = resume_dir;
     resume_options.resume = true;

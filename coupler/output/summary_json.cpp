@@ -2,12 +2,9 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "output/atomic_write.hpp"
-#include "output/summary_parser.hpp"
 
 namespace rockcut::coupler {
 
@@ -100,19 +97,6 @@ std::string Summary::to_json() const {
 
 void Summary::write(const std::filesystem::path& file) const {
   write_file_atomically(file, to_json());
-}
-
-Summary Summary::read(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file.string() + ": cannot open for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(file.string() + ": read error");
-  Summary summary;
-  for (auto& [key, value] : parse_flat_json_object(buffer.str(), file.string())) {
-    summary.set(key, std::move(value));
-  }
-  return summary;
 }
 
 }  // namespace rockcut::coupler

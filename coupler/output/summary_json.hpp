@@ -1,4 +1,5 @@
-// summary.json: the headline scalars of a run, for scripts and regression tests.
+// summary.json: the headline scalars of a run, for scripts and regression tests. (The tests read it
+// back with tests/support/summary_parser.hpp.)
 #pragma once
 
 #include <cstdint>
@@ -23,10 +24,6 @@ class Summary {
   /// Writes atomically (to a temporary file, then rename). Non-finite doubles are written as null.
   void write(const std::filesystem::path& file) const;
   std::string to_json() const;
-
-  /// Reads a flat JSON object written by write() (numbers with '.', 'e' or 'null' become double,
-  /// other integers int64). Throws std::runtime_error on malformed input.
-  static Summary read(const std::filesystem::path& file);
 
  private:
   std::vector<std::pair<std::string, SummaryValue>> entries_;

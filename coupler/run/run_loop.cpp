@@ -269,7 +269,7 @@ void RunSession::write_frame() {
     }
   }
   // The breaks since the last frame first: the frame's flush then covers them too, so a reader
-  // of a run still going finds /breaks complete up to the newest frame (scripts/windows).
+  // of a run still going finds /breaks complete up to the newest frame (rockcut windows).
   if (dem_logs_breaks_) write_breaks(reply_);
   run_file_->write_frame(time_s_, step_, dem_.init.particle_count(), fields);
 }

@@ -156,6 +156,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Leave it out to deform until the end of the run."},
     {"rockcut.PrescribedMotion.origin_m",
      "The point that does not move."},
+    {"rockcut.Scene.base",
+     "Another scene file this one starts from, its path relative to this file (e.g. \"../cutting/saturated_reduced.pbtxt\"); the fields written here then override it. A message block merges field by field, a scalar replaces the base's value, and a repeated field written here replaces the base's whole list. A base may have a base of its own; a cycle is refused. Problems are reported at the file and line that wrote the value, also in a base. The effective scene (bases merged, `coupler validate CASE --print`) is what run.h5 stores, without this field."},
     {"rockcut.Scene.coupling",
      "How the coupler drives the two processes."},
     {"rockcut.Scene.dem",

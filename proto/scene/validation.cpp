@@ -13,7 +13,6 @@ namespace rockcut::scene {
 namespace {
 
 namespace pb = google::protobuf;
-using Tree = pb::TextFormat::ParseInfoTree;
 using Field = pb::FieldDescriptor;
 
 struct Number {
@@ -67,10 +66,10 @@ bool in_bounds(double value, const pb::FieldOptions& options) {
 
 class Validator {
  public:
-  Validator(const std::string& file, const OverrideSites& sites) : file_(file), sites_(sites) {}
+  explicit Validator(const OverrideSites& sites) : sites_(sites) {}
 
   // `opening` is where the message starts: missing fields are reported there.
-  void check_message(const pb::Message& message, const std::string& path, const Tree* tree,
+  void check_message(const pb::Message& message, const std::string& path, const SourceMap* map,
                      const Location& opening) {
     const pb::Descriptor& type = *message.GetDescriptor();
     const pb::Reflection& r = *message.GetReflection();
@@ -88,11 +87,11 @@ class Validator {
         const int index = field.is_repeated() ? k : -1;
         const std::string value_path =
             field.is_repeated() ? field_path + "[" + std::to_string(k) + "]" : field_path;
-        const Location at = where(message, field, index, tree, opening);
+        const Location at = where(message, field, index, map, opening);
         if (field.cpp_type() == Field::CPPTYPE_MESSAGE) {
           const pb::Message& child = field.is_repeated() ? r.GetRepeatedMessage(message, &field, k)
                                                          : r.GetMessage(message, &field);
-          check_message(child, value_path, tree ? tree->GetTreeForNested(&field, index) : nullptr, at);
+          check_message(child, value_path, map ? map->child(&field, index) : nullptr, at);
         } else {
           check_value(message, field, index, value_path, at);
         }
@@ -124,36 +123,28 @@ class Validator {
     }
   }
 
-  // Where a field's value was written: the override that set it, else its place in the file,
-  // else (a field the tree does not know) the start of its message.
-  Location where(const pb::Message& message, const Field& field, int index, const Tree* tree,
+  // Where a field's value was written: the override that set it, else its place in the file (or
+  // the base) that wrote it, else (a field the map does not know) the start of its message.
+  Location where(const pb::Message& message, const Field& field, int index, const SourceMap* map,
                  const Location& opening) const {
     if (const auto site = sites_.find({&message, &field}); site != sites_.end()) return site->second;
-    if (tree == nullptr) return opening;
-    if (field.is_repeated()) {
-      // `f: [a, b]` is recorded once for all its values: then use the first record.
-      int recorded = 0;
-      while (tree->GetLocation(&field, recorded).line >= 0) ++recorded;
-      if (recorded != message.GetReflection()->FieldSize(message, &field)) index = 0;
-    }
-    const auto location = tree->GetLocation(&field, index);
-    return location.line < 0 ? opening : Location{file_, location.line + 1, location.column + 1};
+    const Location* written = map ? map->find(&field, index) : nullptr;
+    return written ? *written : opening;
   }
 
   void report(const Location& at, std::string message) {
     diagnostics.push_back({at.file, at.line, at.column, std::move(message)});
   }
 
-  const std::string& file_;
   const OverrideSites& sites_;
 };
 
 }  // namespace
 
-std::vector<Diagnostic> validate(const pb::Message& root, const std::string& file, const Tree* tree,
+std::vector<Diagnostic> validate(const pb::Message& root, const std::string& file, const SourceMap* map,
                                  const OverrideSites& sites) {
-  Validator validator(file, sites);
-  validator.check_message(root, "", tree, {file, 1, 1});
+  Validator validator(sites);
+  validator.check_message(root, "", map, {file, 1, 1});
   return std::move(validator.diagnostics);
 }
 

@@ -9,14 +9,15 @@
 
 #include "scene/overrides.hpp"
 #include "scene/scene_loader.hpp"
+#include "scene/source_map.hpp"
 
 namespace rockcut::scene {
 
 /// Walks the whole message tree by reflection and reports every field that breaks its
 /// (required), (min), (max), (greater_than) or (choices) option, or is a NaN or infinite number.
-/// Positions come from `tree` (the parse of `file`) or, for overridden fields, from `sites`.
+/// Positions come from `sites` for overridden fields, else from `map` (where the file, or a base,
+/// wrote the value); problems of the whole scene are reported at the start of `file`.
 std::vector<Diagnostic> validate(const google::protobuf::Message& root, const std::string& file,
-                                 const google::protobuf::TextFormat::ParseInfoTree* tree,
-                                 const OverrideSites& sites);
+                                 const SourceMap* map, const OverrideSites& sites);
 
 }  // namespace rockcut::scene

@@ -15,6 +15,8 @@ TEST(Cli, EveryCaseValidates) {
   int count = 0;
   for (const auto& entry : fs::recursive_directory_iterator(source("cases"))) {
     if (entry.path().extension() != ".pbtxt") continue;
+    // cases/rock/ holds rock descriptions that scenes start from (`base:`), not scenes.
+    if (entry.path().parent_path().filename() == "rock") continue;
     ++count;
     std::string out, err;
     EXPECT_EQ(run({bin("coupler"), "validate", entry.path().string()}, dir, "validate", &out, &err),

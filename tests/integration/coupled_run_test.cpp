@@ -10,6 +10,7 @@
 #include "integration/process_helpers.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
+#include "support/summary_parser.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -46,7 +47,7 @@ fs::path run_pressure_gradient(const std::string& transport, std::string* err = 
 
 TEST(CoupledRun, PressureGradientFollowsTheAnalyticalSolutionToRoundOff) {
   const fs::path out = run_pressure_gradient("ipc");
-  const Summary s = Summary::read(out / "summary.json");
+  const Summary s = coupler::read_summary(out / "summary.json");
   EXPECT_EQ(text(s, "status"), "completed");
   // Tolerance 1e-11: velocity Verlet is exact for constant acceleration; round-off grows like
   // steps * eps * |x| / |displacement| ~ 1e-12 (see the scene file).
@@ -113,7 +114,7 @@ TEST(CoupledRun, DrySceneStartsNoFluidProcessAndIsExact) {
   EXPECT_EQ(*code, 0) << read_file(s.err_file);
   for (const std::string& name : seen) EXPECT_EQ(name, "dem_module");
   EXPECT_NE(read_file(s.err_file).find("no fluid process"), std::string::npos);
-  const Summary summary = Summary::read(dir / "out" / "summary.json");
+  const Summary summary = coupler::read_summary(dir / "out" / "summary.json");
   EXPECT_LT(number(summary, "error_max_rel"), 1e-11);
   EXPECT_EQ(text(summary, "fluid_model"), "none");
   // Dry: one message per output event, not per step.
@@ -123,7 +124,7 @@ TEST(CoupledRun, DrySceneStartsNoFluidProcessAndIsExact) {
 TEST(CoupledRun, OnlyTheFieldsTheFluidNeedsCrossTheWire) {
   // prescribed_gradient needs no kinematics: per exchange only the force array travels back.
   const fs::path out = run_pressure_gradient("inproc");
-  const Summary s = Summary::read(out / "summary.json");
+  const Summary s = coupler::read_summary(out / "summary.json");
   const double per_exchange = number(s, "bytes_exchanged") / number(s, "exchanges");
   EXPECT_EQ(per_exchange, 200 * 2 * sizeof(double));
 }

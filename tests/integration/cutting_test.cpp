@@ -13,6 +13,7 @@
 #include "integration/process_helpers.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
+#include "support/summary_parser.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -93,7 +94,7 @@ TEST(Cutting, SmallDryCutWritesForcesBreaksAndDamage) {
   EXPECT_NE(read_file(s.err_file).find("no fluid process"), std::string::npos);
 
   const fs::path out = dir / "out";
-  const Summary summary = Summary::read(out / "summary.json");
+  const Summary summary = coupler::read_summary(out / "summary.json");
   EXPECT_EQ(text(summary, "status"), "completed");
   // Energy budget of the dry cut (DESIGN section 5): the same trapezoid and damping quadrature as
   // the saturated cut, measured 0.3 % there; bound 2 %.

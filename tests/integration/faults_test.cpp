@@ -9,6 +9,7 @@
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
 #include "output/summary_json.hpp"
+#include "support/summary_parser.hpp"
 #include "wire/protocol.hpp"
 
 namespace rockcut::test {
@@ -51,7 +52,7 @@ void expect_readable_partial_output(const fs::path& out, const std::string& stat
   EXPECT_GE(h5.members("/frames").size(), 2u);
   EXPECT_FALSE(h5.doubles("/timeseries/time_s").empty());
   EXPECT_EQ(h5.root_attribute("status").rfind(status, 0), 0u) << h5.root_attribute("status");
-  const auto summary = coupler::Summary::read(out / "summary.json");
+  const auto summary = coupler::read_summary(out / "summary.json");
   EXPECT_EQ(std::get<std::string>(*summary.get("status")), status);
 }
 

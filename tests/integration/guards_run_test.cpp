@@ -11,6 +11,7 @@
 #include "integration/process_helpers.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
+#include "support/summary_parser.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -30,7 +31,7 @@ CouplerRun run_scene_text(const std::string& name, const std::string& scene_text
 void expect_stopped_by(const CouplerRun& r, const std::string& guard) {
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_NE(r.err.find("(guard " + guard + ")"), std::string::npos) << r.err;
-  const Summary s = Summary::read(r.out / "summary.json");
+  const Summary s = coupler::read_summary(r.out / "summary.json");
   EXPECT_EQ(text(s, "status"), "failed");
   EXPECT_EQ(text(s, "failure_guard"), guard);
   EXPECT_NE(text(s, "error").find(guard + " guard"), std::string::npos);
@@ -69,7 +70,7 @@ TEST(GuardsRun, InfiniteStateStopsTheRunAtOnce) {
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_NE(r.err.find("(guard nan)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("not finite"), std::string::npos) << r.err;
-  const Summary s = Summary::read(r.out / "summary.json");
+  const Summary s = coupler::read_summary(r.out / "summary.json");
   EXPECT_EQ(text(s, "status"), "failed");
   EXPECT_EQ(text(s, "failure_guard"), "nan");
   EXPECT_GE(number(s, "failure_particle"), 0);
@@ -90,7 +91,7 @@ TEST(GuardsRun, RunawayKineticEnergyStopsAStepAboveTheLimit) {
   expect_stopped_by(r, "kinetic_energy");
   EXPECT_NE(r.err.find("WARNING time.dt_s"), std::string::npos) << r.err;
   // Stopped within one guard interval of the blow-up, long before anything overflowed.
-  const Summary s = Summary::read(r.out / "summary.json");
+  const Summary s = coupler::read_summary(r.out / "summary.json");
   EXPECT_LT(number(s, "failure_time_s"), 0.001);
   EXPECT_TRUE(std::isfinite(number(s, "failure_value")));
   // Without ignore_limits the same scene is refused before anything runs.
@@ -115,7 +116,7 @@ TEST(GuardsRun, ExcessiveOverlapStopsAQuasiStaticCrush) {
       "}\n";
   const CouplerRun r = run_scene_text("guard_overlap", scene);
   expect_stopped_by(r, "overlap");
-  const Summary s = Summary::read(r.out / "summary.json");
+  const Summary s = coupler::read_summary(r.out / "summary.json");
   // Both walls' overlaps grow at half the platen speed: 0.25 mm each after 0.05 s at most. The
   // guard runs every 50 steps of 1.9e-7 s: it trips within 1e-5 s of the crossing.
   EXPECT_NEAR(number(s, "failure_time_s"), 0.05, 0.002);

@@ -13,6 +13,7 @@
 #include "integration/process_helpers.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
+#include "support/summary_parser.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -20,14 +21,17 @@ namespace {
 namespace fs = std::filesystem;
 using coupler::Summary;
 
-// saturated_reduced.pbtxt with the node boxes 10 mm wide (written once per test directory).
+// saturated_reduced.pbtxt with the node boxes 10 mm wide (written once per test directory): a scene
+// that starts from it (`base:`) and names the three nodes again (a repeated field replaces the
+// base's list).
 fs::path small_scene(const fs::path& dir) {
-  std::string text = read_file(source("cases/cutting/saturated_reduced.pbtxt"));
-  for (std::size_t at; (at = text.find("size_m: 0.005")) != std::string::npos;) {
-    text.replace(at, 13, "size_m: 0.01");
-  }
   const fs::path scene = dir / "saturated_small.pbtxt";
-  std::ofstream(scene) << text;
+  std::ofstream(scene) << "base: \"" << source("cases/cutting/saturated_reduced.pbtxt") << "\"\n"
+                       << "dem { tool {\n"
+                          "  pressure_nodes { name: \"p1\" size_m: 0.01 }\n"
+                          "  pressure_nodes { name: \"p2\" offset_m { x: 0.0125 y: 0.01 } size_m: 0.01 }\n"
+                          "  pressure_nodes { name: \"p3\" offset_m { x: 0.03 } size_m: 0.01 }\n"
+                          "} }\n";
   return scene;
 }
 
@@ -96,7 +100,7 @@ void expect_coupled_cutting_summary(const Summary& s, const std::string& model) 
 TEST(SaturatedCutting, ExplicitModelWritesPressureNodesRegimeAndSealsAtTheTool) {
   const CouplerRun r = run_small_cut("explicit");
   ASSERT_EQ(r.code, 0) << r.err;
-  const Summary s = Summary::read(r.out / "summary.json");
+  const Summary s = coupler::read_summary(r.out / "summary.json");
   expect_coupled_cutting_summary(s, "explicit");
   // N is chosen from the limits and its binding limit printed: here the pore fluid's stiffness
   // (lagged force) binds, well below the explicit diffusion limit.
@@ -121,7 +125,7 @@ TEST(SaturatedCutting, ExplicitModelWritesPressureNodesRegimeAndSealsAtTheTool) 
 TEST(SaturatedCutting, ImplicitModelByOneSceneLine) {
   const CouplerRun r = run_small_cut("implicit", {"--set", "fluid.model=implicit"});
   ASSERT_EQ(r.code, 0) << r.err;
-  expect_coupled_cutting_summary(Summary::read(r.out / "summary.json"), "implicit");
+  expect_coupled_cutting_summary(coupler::read_summary(r.out / "summary.json"), "implicit");
 }
 
 TEST(SaturatedCutting, FluidExecutableGivenByPath) {
@@ -132,7 +136,7 @@ TEST(SaturatedCutting, FluidExecutableGivenByPath) {
   fs::copy_file(bin("fluid_module"), exe);
   const CouplerRun r = run_small_cut("by_path", {"--set", "fluid.executable=" + exe.string()});
   ASSERT_EQ(r.code, 0) << r.err;
-  expect_coupled_cutting_summary(Summary::read(r.out / "summary.json"), "explicit");
+  expect_coupled_cutting_summary(coupler::read_summary(r.out / "summary.json"), "explicit");
   EXPECT_NE(r.err.find("my_fluid_model"), std::string::npos) << r.err;
 
   const CouplerRun bad = run_small_cut("bad_path", {"--set", "fluid.executable=/nonexistent/fluid"});
@@ -153,7 +157,7 @@ TEST(SaturatedCutting, WithoutDampingTheFluidForceDoesNotLag) {
   const CouplerRun r = run_small_cut("undamped", {"--set", "dem.local_damping=0",
                                               "--set", "time.end_time_s=0.002"});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(number(Summary::read(r.out / "summary.json"), "coupling_interval"), 1);
+  EXPECT_EQ(number(coupler::read_summary(r.out / "summary.json"), "coupling_interval"), 1);
 }
 
 TEST(SaturatedCutting, ForcesRidingOnTheNextAdvanceChangeNoBit) {

@@ -15,6 +15,7 @@
 #include "integration/process_helpers.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
+#include "support/summary_parser.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -59,8 +60,8 @@ TEST(SharedMemory, PaperScaleCutHasTheSameBitsThroughSharedMemoryFramesAndInproc
   unsetenv("ROCKCUT_WIRE_SHARED_MEMORY");
   const fs::path inproc = run_paper_stretch("inproc", "inproc");
 
-  const Summary a = Summary::read(shm / "summary.json"), b = Summary::read(frames / "summary.json"),
-                c = Summary::read(inproc / "summary.json");
+  const Summary a = coupler::read_summary(shm / "summary.json"), b = coupler::read_summary(frames / "summary.json"),
+                c = coupler::read_summary(inproc / "summary.json");
   // Every per-particle array of the exchanges (positions and forces) went through shared memory;
   // only the wall segments (a few hundred bytes) stayed in frames.
   const double per_exchange = number(a, "bytes_exchanged") / number(a, "exchanges");

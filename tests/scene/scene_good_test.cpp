@@ -71,6 +71,8 @@ TEST(SceneGood, EveryCaseLoads) {
   if (!fs::exists(cases)) return;
   for (const auto& entry : fs::recursive_directory_iterator(cases)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".pbtxt") continue;
+    // cases/rock/ holds rock descriptions that scenes start from (`base:`), not scenes.
+    if (entry.path().parent_path().filename() == "rock") continue;
     SCOPED_TRACE(entry.path().string());
     try {
       load_scene(entry.path());

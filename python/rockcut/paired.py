@@ -1,0 +1,47 @@
+"""Paired differences over specimen seeds in a rockcut sweep CSV (docs/accuracy.md, "The coupling
+interval over sixteen seeds").
+
+  rockcut paired SWEEP_CSV [--key force_horizontal_mean_n_per_m] [--scale 1e-3]
+
+SWEEP_CSV is a sweep's sweep.csv, run with --seeds: its first column is the varied parameter.
+Every value is run on the same specimens, so its difference from the first (smallest) value is
+taken seed by seed; the mean of those differences and its standard error resolve a change that
+the seeds' own spread hides. Prints a markdown table, one row per value: runs, mean wall time,
+mean of KEY (times --scale), the mean paired difference from the first value ± its standard
+error (and relative to the first value's mean), and the mean shear fraction of the broken bonds.
+Seeds missing from either value, and failed runs, are left out of a difference.
+"""
+import argparse
+import csv
+import sys
+
+from .stats import paired_table
+
+
+
+def table(rows, key, scale=1.0):
+    """[(value, runs, wall, mean, diff, diff_sem, diff_rel, shear)] from sweep.csv rows
+    (stats.paired_table)."""
+    return paired_table(rows, key, scale)
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(prog="rockcut paired", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("csv")
+    ap.add_argument("--key", default="force_horizontal_mean_n_per_m")
+    ap.add_argument("--scale", type=float, default=1e-3)
+    a = ap.parse_args(argv)
+    try:
+        with open(a.csv) as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        sys.exit("rockcut paired: %s" % e)
+    if not rows or a.key not in rows[0] or "seed" not in rows[0]:
+        sys.exit("rockcut paired: %s has no seed column or no %s column" % (a.csv, a.key))
+    param = next(iter(rows[0]))
+    print("| %s | runs | wall [s] | %s | difference from the first | shear fraction |" % (param, a.key))
+    print("|---:|---:|---:|---:|---:|---:|")
+    for i, (v, n, wall, m, d, e, rel, sh) in enumerate(table(rows, a.key, a.scale)):
+        diff = "" if i == 0 else "%+.1f ± %.1f (%+.0f %%)" % (d, e, 100 * rel)
+        print("| %g | %d | %.1f | %.1f | %s | %.2f |" % (v, n, wall, m, diff, sh))
+

@@ -1,0 +1,86 @@
+"""Starting runs of the coupler: the one place that finds the program and sets the environment of
+the runs it starts (the commands of every verb go through here).
+
+    from rockcut import runs
+    proc = runs.run("cases/cutting/dry_reduced.pbtxt", "out/x", ["time.end_time_s=0.004"])
+"""
+import os
+import subprocess
+
+# The repository this package lives in: python/rockcut/ -> the root.
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CASES = os.path.join(REPO, "cases")
+DEFAULT_COUPLER = os.path.join(REPO, "build", "bin", "coupler")
+
+
+def case(*parts):
+    """A path under cases/, e.g. case("cutting", "saturated_reduced.pbtxt")."""
+    return os.path.join(CASES, *parts)
+
+
+def coupler(path=None):
+    """The coupler to run: `path` if given, else $ROCKCUT_COUPLER, else build/bin/coupler of this
+    repository. Raises SystemExit with what to do when it is not there."""
+    path = path or os.environ.get("ROCKCUT_COUPLER") or DEFAULT_COUPLER
+    if not os.access(path, os.X_OK):
+        raise SystemExit(f"rockcut: no coupler at {path} (build it with scripts/setup, or give "
+                         "--coupler PATH)")
+    return path
+
+
+def cpu_count():
+    """The CPUs this process may use (containers, taskset)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count() or 1
+
+
+def side_by_side(jobs):
+    """Sets the environment for `jobs` runs at a time. Runs side by side must not poll for a reply
+    before sleeping (proto/wire/spin_wait.hpp): with more runs than cores the pollers starve each
+    other. An explicit ROCKCUT_WIRE_SPIN_US still wins. The coupler itself sets OMP_WAIT_POLICY
+    for its modules (coupler/cli/main.cpp)."""
+    if jobs > 1:
+        os.environ.setdefault("ROCKCUT_WIRE_SPIN_US", "0")
+
+
+def command(scene, out, sets=(), coupler_path=None, transport=None):
+    """The argv of `coupler run SCENE --out OUT [--transport T] --set S ...`."""
+    argv = [coupler(coupler_path), "run", scene, "--out", out]
+    if transport:
+        argv += ["--transport", transport]
+    for s in sets:
+        argv += ["--set", s]
+    return argv
+
+
+def run(scene, out, sets=(), coupler_path=None, transport=None, log=None):
+    """Runs the coupler to the end; returns the CompletedProcess with its stdout and stderr. With
+    `log` (a path) the command line and both streams are also written there."""
+    argv = command(scene, out, sets, coupler_path, transport)
+    proc = subprocess.run(argv, capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    if log:
+        with open(log, "w") as f:
+            f.write(" ".join(argv) + "\n" + proc.stdout + proc.stderr)
+    return proc
+
+
+def start(argv, log):
+    """Starts `argv` (command()) in the background, its output into the open file `log`, in a
+    session of its own: a Ctrl-C at the terminal reaches only the caller, which then stops its runs
+    itself instead of each receiving it at a random point."""
+    return subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                            start_new_session=True)
+
+
+def effective_scene(scene, sets=(), coupler_path=None):
+    """The scene as a run would use it: its bases merged and `sets` applied (`coupler validate
+    SCENE --print`), as text. Raises SystemExit with the coupler's message on a bad scene."""
+    argv = [coupler(coupler_path), "validate", scene, "--print"]
+    for s in sets:
+        argv += ["--set", s]
+    proc = subprocess.run(argv, capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise SystemExit(f"rockcut: {scene}: {proc.stderr.strip()}")
+    return proc.stdout.split("\n", 1)[1] if "\n" in proc.stdout else ""

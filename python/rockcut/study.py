@@ -1,0 +1,308 @@
+"""Error against run time of the SP pore-pressure models (issue 4; DESIGN section 7).
+
+Runs ladders of resolutions of the fluid verification scenes with both models through
+`coupler run --set ...`, and writes:
+  OUT/study.csv                     one row per run
+  OUT/fluid_study_<case>.png        log-log error against wall time, one line per ladder and model
+  OUT/fluid_study.md                the table and the observed convergence orders
+
+  rockcut study [--out DIR] [--build DIR] [--cases terzaghi,gaussian_pulse,undrained_step]
+                [--quick] [--transport inproc]
+
+Ladders (each for `explicit` and `implicit`):
+  size   particle size: finer lattices (terzaghi) or finer random packings (gaussian_pulse: windows
+         of ../shared/bench/pack57k.txt scaled to the same 40 mm domain), h / spacing fixed, the
+         step a fixed fraction of h^2 / D (so space and time are refined together)
+  size_h particle size at Table 1's h = 1.5 mm (h / spacing grows)
+  size_sqrt  particle size with h ~ sqrt(spacing): h / spacing grows while h falls, the path on
+         which SP approximations converge (both the kernel's quadrature error, a function of
+         spacing / h, and its smoothing error, a function of h, vanish)
+  ratio  h / spacing at a fixed particle size
+  dt     the fluid step at a fixed particle size and h (the implicit model far beyond the explicit
+         limit)
+The error is the scene's error_l2_rel (and error_max_rel) at the final time; the wall time is the
+run's wall_time_s from summary.json.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+import numpy as np
+
+from . import crop_packing, runs
+from .run_data import read_summary
+
+ROOT = runs.REPO
+
+D = 2e9 * 1e-14 / 1e-3  # Table 1: M kappa / mu [m^2/s]
+C = 0.05                # explicit stability constant (fluid_module/sp/explicit_model.hpp)
+MODELS = ("explicit", "implicit")
+
+
+def run(build, scene, sets, out_dir, transport):
+    coupler = os.path.join(build, "bin", "coupler")
+    sets = [f"{key}={value}" for key, value in sets.items()]
+    proc = runs.run(os.path.join(ROOT, scene), out_dir, sets, coupler, transport)
+    summary = read_summary(out_dir)
+    if proc.returncode not in (0, 1) or summary is None:
+        raise RuntimeError(f"{' '.join(runs.command(scene, out_dir, sets, coupler, transport))} "
+                           f"failed ({proc.returncode}):\n{proc.stderr}")
+    return summary
+
+
+def steps_dividing(interval, dt_max):
+    """The largest step <= dt_max that divides `interval` into whole steps."""
+    return interval / math.ceil(interval / dt_max * (1 - 1e-12))
+
+
+# ---- terzaghi: lattice column of 4 x ny discs, L = (ny - 1/2) s = 19.5 mm ----------------------
+TERZ_L = 0.0195
+TERZ_LOAD = 2e-4  # the load ramp of the scene [s]
+
+
+def terzaghi_runs(quick):
+    runs = []
+    sizes = [17, 33, 65] if quick else [17, 33, 65, 129]
+    for model in MODELS:
+        for ny in sizes:  # size ladder: h / s = 2.5
+            runs.append(("size", model, terzaghi_sets(model, ny, 2.5, None)))
+        for ny in ([33, 65, 129] if quick else [33, 49, 65, 97, 129]):  # size at h = 1.5 mm
+            runs.append(("size_h", model, terzaghi_sets(model, ny, 0.0015 * (ny - 0.5) / TERZ_L, None)))
+        for ny in ([17, 65] if quick else [17, 33, 65, 129]):  # h ~ sqrt(s): h / s grows, h falls
+            s_ = TERZ_L / (ny - 0.5)
+            s0 = TERZ_L / 16.5
+            runs.append(("size_sqrt", model, terzaghi_sets(model, ny, 2.5 * math.sqrt(s0 / s_), None)))
+        for ratio in ([2.0, 3.0, 4.0] if quick else [2.0, 2.5, 3.0, 4.0, 5.0]):  # at ny = 65
+            runs.append(("ratio", model, terzaghi_sets(model, 65, ratio, None)))
+        factors = [0.25, 0.5, 0.89] if model == "explicit" else [0.5, 1.78, 7.1, 35.6]
+        if not quick and model == "implicit":
+            factors = [0.44, 0.89, 1.78, 3.56, 7.1, 17.8, 35.6]
+        if not quick and model == "explicit":
+            factors = [0.125, 0.25, 0.5, 0.89]
+        for f in factors:  # dt ladder at ny = 33, h / s = 2.5
+            runs.append(("dt", model, terzaghi_sets(model, 33, 2.5, f)))
+    return runs
+
+
+def terzaghi_sets(model, ny, ratio, dt_factor):
+    s = TERZ_L / (ny - 0.5)
+    h = ratio * s
+    limit = C * h * h / D
+    dt = steps_dividing(TERZ_LOAD, (dt_factor or 0.89) * limit)
+    # Wide enough that the middle columns are interior (div r > 1.5): a column narrower than ~2h
+    # is all surface, and its inner "surface" would drain.
+    nx = max(6, math.ceil(2 * ratio) + 3)
+    return {
+        "fluid.model": model,
+        "dem.lattice.nx": nx,
+        "dem.lattice.ny": ny,
+        "dem.lattice.spacing_m": f"{s:.17g}",
+        "dem.lattice.radius_m": f"{0.5 * s:.17g}",
+        "fluid.smoothing_length_m": f"{h:.17g}",
+        "time.dt_s": f"{dt:.17g}",
+        "fluid.implicit.max_diffusion_number": 1000,
+    }
+
+
+# ---- gaussian_pulse: windows of pack57k scaled to a 40 mm domain --------------------------------
+GAUSS_DOMAIN = 0.04
+GAUSS_T = 2.25e-4  # end time of the scene: the peak has halved
+PACK57K = os.path.join(ROOT, "..", "shared", "bench", "pack57k.txt")
+
+
+def gaussian_runs(quick, work):
+    crop = crop_packing
+    packings = {}
+    scales = [2.0, 1.0, 0.5] if quick else [2.0, 1.41, 1.0, 0.707, 0.5]
+    for scale in scales:
+        width = GAUSS_DOMAIN / scale
+        discs = crop.crop(PACK57K, (0.1 - width / 2, 0.05 - width / 2, width, width), scale, True)
+        path = os.path.join(work, f"packing_scale_{scale}.txt")
+        crop.write(path, discs, f"study: {width} m window of pack57k scaled by {scale}")
+        spacing = math.sqrt(GAUSS_DOMAIN ** 2 / len(discs))
+        packings[scale] = (path, spacing, len(discs))
+    runs = []
+    for model in MODELS:
+        for scale in scales:  # size ladder: h = 2.55 mean spacings (Table 1's ratio)
+            path, s, _ = packings[scale]
+            runs.append(("size", model, gaussian_sets(model, path, 2.55 * s, None)))
+        for scale in scales:  # size ladder at Table 1's h = 1.5 mm (h / s grows)
+            if scale <= 1.0:
+                path, s, _ = packings[scale]
+                runs.append(("size_h", model, gaussian_sets(model, path, 0.0015, None)))
+        for scale in scales:  # h ~ sqrt(s): h / s grows while h falls
+            path, s, _ = packings[scale]
+            s0 = packings[scales[0]][1]
+            runs.append(("size_sqrt", model, gaussian_sets(model, path, 2.55 * s0 * math.sqrt(s / s0), None)))
+        path, s, _ = packings[0.5]
+        for ratio in ([2.55, 3.4, 5.0] if quick else [2.55, 3.0, 3.4, 4.2, 5.0]):
+            runs.append(("ratio", model, gaussian_sets(model, path, ratio * s, None)))
+        path, s, _ = packings[1.0]
+        factors = [0.25, 0.5, 0.89] if model == "explicit" else [0.5, 2.0, 8.0, 30.0]
+        if not quick:
+            factors = [0.125, 0.25, 0.5, 0.89] if model == "explicit" else [0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 30.0]
+        for f in factors:
+            runs.append(("dt", model, gaussian_sets(model, path, 2.55 * s, f)))
+    return runs
+
+
+def gaussian_sets(model, packing, h, dt_factor):
+    limit = C * h * h / D
+    dt = steps_dividing(GAUSS_T, (dt_factor or 0.89) * limit)
+    return {
+        "fluid.model": model,
+        "dem.packing_file.path": packing,
+        "fluid.smoothing_length_m": f"{h:.17g}",
+        "time.dt_s": f"{dt:.17g}",
+        "fluid.implicit.max_diffusion_number": 1000,
+    }
+
+
+# ---- undrained_step: the strain measure's first-order error in the step -------------------------
+def undrained_runs(quick):
+    runs = []
+    for model in MODELS:
+        # The load lasts 0.2 ms; the explicit limit (h = 1.5 mm) is 5.6 us, i.e. at least 36 steps.
+        ks = [40, 160] if quick else [40, 80, 160, 320]
+        if model == "implicit":
+            ks = [2, 10, 40, 160] if quick else [2, 5, 10, 20, 40, 80, 160, 320]
+        for k in ks:
+            runs.append(("dt", model, {"fluid.model": model, "time.dt_s": f"{2e-4 / k:.17g}",
+                                       "fluid.implicit.max_diffusion_number": 1000}))
+    return runs
+
+
+CASES = {
+    "terzaghi": "cases/verification/terzaghi.pbtxt",
+    "gaussian_pulse": "cases/verification/gaussian_pulse.pbtxt",
+    "undrained_step": "cases/verification/undrained_step.pbtxt",
+}
+
+
+def order(xs, ys):
+    """Least-squares slope of log y against log x."""
+    if len(xs) < 2:
+        return float("nan")
+    return float(np.polyfit(np.log(xs), np.log(ys), 1)[0])
+
+
+def main(argv):
+    p = argparse.ArgumentParser(prog="rockcut study", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--out", default=os.path.join(ROOT, "out", "study"))
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--cases", default="terzaghi,gaussian_pulse,undrained_step")
+    p.add_argument("--quick", action="store_true", help="shorter ladders (a few minutes)")
+    p.add_argument("--transport", default="inproc")
+    a = p.parse_args(argv)
+    os.makedirs(a.out, exist_ok=True)
+    work = os.path.join(a.out, "runs")
+    os.makedirs(work, exist_ok=True)
+
+    rows = []
+    for case in a.cases.split(","):
+        if case == "terzaghi":
+            runs = terzaghi_runs(a.quick)
+        elif case == "gaussian_pulse":
+            runs = gaussian_runs(a.quick, work)
+        elif case == "undrained_step":
+            runs = undrained_runs(a.quick)
+        else:
+            sys.exit(f"unknown case {case}; choose from {', '.join(CASES)}")
+        for k, (ladder, model, sets) in enumerate(runs):
+            out_dir = os.path.join(work, f"{case}_{k:03d}")
+            s = run(a.build, CASES[case], sets, out_dir, a.transport)
+            h = float(sets.get("fluid.smoothing_length_m", 0.0015))
+            particles = int(s["particles"])
+            if "dem.lattice.spacing_m" in sets:
+                spacing = float(sets["dem.lattice.spacing_m"])
+            else:  # mean spacing of the random packing: the root of the area per particle
+                spacing = math.sqrt((GAUSS_DOMAIN if case == "gaussian_pulse" else 0.03) ** 2 / particles)
+            row = {
+                "case": case, "model": model, "ladder": ladder, "particles": particles,
+                "h_m": h, "spacing_m": spacing, "dt_s": float(s["dt_s"]), "dt_over_explicit_limit": float(s["dt_s"]) / (C * h * h / D),
+                "steps": int(s["steps"]), "error_l2_rel": float(s["error_l2_rel"]),
+                "error_max_rel": float(s["error_max_rel"]), "wall_time_s": float(s["wall_time_s"]),
+            }
+            rows.append(row)
+            print(f"{case:15s} {model:8s} {ladder:5s} N={particles:6d} h={h:.3e} dt={row['dt_s']:.3e} "
+                  f"l2={row['error_l2_rel']:.3e} max={row['error_max_rel']:.3e} wall={row['wall_time_s']:.3f}s",
+                  flush=True)
+
+    csv_path = os.path.join(a.out, "study.csv")
+    with open(csv_path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    plot(rows, a.out)
+    report(rows, a.out)
+    print(f"wrote {csv_path}, {a.out}/fluid_study_*.png, {a.out}/fluid_study.md")
+
+
+def series(rows, case, model, ladder):
+    return [r for r in rows if r["case"] == case and r["model"] == model and r["ladder"] == ladder]
+
+
+LADDERS = (("size", "o"), ("size_h", "D"), ("size_sqrt", "v"), ("ratio", "s"), ("dt", "^"))
+
+
+def refinement(r, ladder):
+    """The ladder's refinement variable x (it falls as the ladder refines)."""
+    if ladder.startswith("size"):
+        return r["spacing_m"]
+    if ladder == "ratio":
+        return r["spacing_m"] / r["h_m"]
+    return r["dt_s"]
+
+
+def plot(rows, out):
+    from .figures import plt
+    for case in sorted({r["case"] for r in rows}):
+        fig, axes = plt.subplots(1, 2, figsize=(12, 5), sharey=True)
+        for ax, model in zip(axes, MODELS):
+            for (ladder, marker), colour in zip(LADDERS, plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+                # In refinement order: coarse to fine along the ladder.
+                pts = sorted(series(rows, case, model, ladder), key=lambda r: -refinement(r, ladder))
+                if not pts:
+                    continue
+                ax.loglog([r["wall_time_s"] for r in pts], [r["error_l2_rel"] for r in pts], marker=marker,
+                          color=colour, linestyle="-", label=f"{ladder} ladder")
+            ax.set_xlabel("wall time [s]")
+            ax.set_title(f"{case}, {model}")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=8)
+        axes[0].set_ylabel("error_l2_rel at the final time")
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, f"fluid_study_{case}.png"), dpi=100)
+        plt.close(fig)
+
+
+def report(rows, out):
+    lines = ["| case | model | ladder | particles | h [mm] | h/s | dt / explicit limit | steps | error_l2_rel | "
+             "error_max_rel | wall [s] |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        ratio = f"{r['h_m'] / r['spacing_m']:.2f}"
+        lines.append(f"| {r['case']} | {r['model']} | {r['ladder']} | {r['particles']} | {r['h_m'] * 1e3:.3f} | "
+                     f"{ratio} | {r['dt_over_explicit_limit']:.3g} | {r['steps']} | {r['error_l2_rel']:.3e} | "
+                     f"{r['error_max_rel']:.3e} | {r['wall_time_s']:.3f} |")
+    lines += ["", "Observed orders p, error_l2_rel ~ x^p, with x the ladder's refinement variable (it falls as "
+              "the ladder refines): the spacing s for the size ladders, s / h for `ratio`, dt for `dt`. p is the "
+              "least-squares slope in log-log; the local orders between consecutive rungs follow it. Positive: "
+              "the error falls with refinement.", "",
+              "| case | model | ladder | x | p (fit) | local orders |", "|---|---|---|---|---|---|"]
+    for case in sorted({r["case"] for r in rows}):
+        for model in MODELS:
+            for ladder, _ in LADDERS:
+                pts = series(rows, case, model, ladder)
+                if len(pts) < 2:
+                    continue
+                xs = [refinement(r, ladder) for r in pts]
+                var = "s" if ladder.startswith("size") else ("s / h" if ladder == "ratio" else "dt")
+                pairs = sorted(zip(xs, [r["error_l2_rel"] for r in pts]))
+                local = [math.log(e1 / e0) / math.log(x1 / x0) for (x0, e0), (x1, e1) in zip(pairs, pairs[1:])]
+                lines.append(f"| {case} | {model} | {ladder} | {var} | {order(*zip(*pairs)):.2f} | "
+                             f"{', '.join(f'{v:.2f}' for v in local)} |")
+    with open(os.path.join(out, "fluid_study.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+

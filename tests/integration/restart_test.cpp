@@ -16,6 +16,7 @@
 #include "integration/process_helpers.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
+#include "support/summary_parser.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -62,8 +63,8 @@ void expect_same_output(const fs::path& a_dir, const fs::path& b_dir, const std:
     }
   }
   EXPECT_EQ(read_file(a_dir / "run.xdmf"), read_file(b_dir / "run.xdmf")) << what;
-  const Summary sa = Summary::read(a_dir / "summary.json");
-  const Summary sb = Summary::read(b_dir / "summary.json");
+  const Summary sa = coupler::read_summary(a_dir / "summary.json");
+  const Summary sb = coupler::read_summary(b_dir / "summary.json");
   ASSERT_EQ(sa.entries().size(), sb.entries().size()) << what;
   for (const auto& [key, value] : sa.entries()) {
     if (kWallFields.count(key)) continue;
@@ -132,7 +133,7 @@ TEST_P(Restart, StoppedKilledAndResumedRunsMatchTheUninterruptedOneBitForBit) {
   // resumed run is stopped again after its next checkpoint and resumed once more.
   const fs::path b = dir / "b";
   ASSERT_EQ(run_until_checkpoints(scene, args, dir, b, 1, SIGTERM, "b"), 128 + SIGTERM);
-  EXPECT_EQ(text(Summary::read(b / "summary.json"), "status"), "interrupted");
+  EXPECT_EQ(text(coupler::read_summary(b / "summary.json"), "status"), "interrupted");
   {
     std::vector<std::string> argv = {bin("coupler"), "resume", b.string(), "--transport",
                                      c.transport};

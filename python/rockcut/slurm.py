@@ -17,6 +17,16 @@ TASKS_FILE = "tasks.tsv"
 SCRIPT_FILE = "job.sbatch"
 JOB_ID_FILE = "slurm_job_id"
 LOG_DIR = "slurm_logs"
+EXIT_CODE_FILE = "exit_code.txt"  # in a run's folder, written by its task when the run ends
+
+
+def exit_code_of(run_dir):
+    """The exit code a Slurm task recorded for the run in `run_dir`, or None."""
+    try:
+        with open(os.path.join(run_dir, EXIT_CODE_FILE)) as f:
+            return int(f.read().strip())
+    except (OSError, ValueError):
+        return None
 
 
 def parse_time_limit(text):
@@ -104,10 +114,15 @@ def job_script(out_dir, coupler, case, n_tasks, time_limit, cpus_per_task, parti
         "# The DEM and the fluid share the task's CPUs: their idle threads sleep.",
         "export OMP_WAIT_POLICY=PASSIVE",
         'eval "set -- $args"',
-        '"$coupler" run "$case" --out "$sweep/$run" --resume "$@" &',
+        'mkdir -p "$sweep/$run"',
+        'echo "\\$ $coupler run $case --out $sweep/$run --resume $args" >> "$sweep/$run/log.txt"',
+        '"$coupler" run "$case" --out "$sweep/$run" --resume "$@" >> "$sweep/$run/log.txt" 2>&1 &',
         "pid=$!",
         'wait "$pid"',
-        "exit $?",
+        "code=$?",
+        "# The run's exit code, for rockcut status and collect (not written when requeued).",
+        'echo "$code" > "$sweep/$run/' + EXIT_CODE_FILE + '"',
+        'exit "$code"',
         "",
     ]
     return "\n".join(lines)
@@ -161,3 +176,13 @@ def task_states(job_id, squeue="squeue"):
         state, reason = parts[1], parts[2]
         states[int(parts[0])] = state + (f" ({reason})" if reason and reason != "None" else "")
     return states
+
+
+def task_index_of_runs(out_dir):
+    """{run folder relative to the sweep folder: task index} from DIR/tasks.tsv."""
+    try:
+        with open(os.path.join(out_dir, TASKS_FILE)) as f:
+            return {line.split("\t", 1)[0]: k for k, line in enumerate(f) if line.strip()}
+    except OSError:
+        return {}
+

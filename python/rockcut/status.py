@@ -10,7 +10,11 @@ DIR is a folder of `rockcut sweep` (DIR/<name>=<value>[/seed=<S>]/). One line pe
   failed       its exit code and the error line (summary.json's error, else the log's last line
                that says error or refused)
   interrupted  its sweep was stopped (Ctrl-C, kill) before it ended, or the run was stopped by a
-               signal: it holds what it wrote so far (rockcut plot, rockcut windows read it)
+               signal: it holds what it wrote so far (rockcut plot, rockcut windows read it);
+               re-running the sweep continues it from its last checkpoint
+For a sweep submitted to Slurm (rockcut sweep --scheduler slurm) each line also gives the task's
+Slurm state while the job array is queued or running (e.g. "slurm: PENDING (BeginTime)" for a task
+requeued at its time limit).
 Exit status: 0 once listed, 2 when DIR is not a sweep folder.
 """
 import argparse
@@ -19,6 +23,7 @@ import os
 import re
 import sys
 
+from . import slurm
 from .run_data import read_summary
 from .sweep import read_plan, seeds_in, sorted_values, values_in
 from .sweep_figures import run_dir
@@ -75,6 +80,8 @@ def state(d):
         return "pending", ""
     status = (summary or {}).get("status")
     code = record.get("exit_code")
+    if code is None:
+        code = slurm.exit_code_of(d)
     if status == "completed" and code in (0, None):
         return "done", f"{summary.get('wall_time_s', float('nan')):.1f} s wall"
     if status == "interrupted" or (code is not None and code >= 128):
@@ -82,6 +89,8 @@ def state(d):
     if code is not None or status == "failed":
         return "failed", f"exit code {code}: {error_line(summary, log)}"
     if "pid" in record and alive(record["pid"]):
+        return "running", progress(log)
+    if record.get("scheduler") == "slurm" and status is None:
         return "running", progress(log)
     return "interrupted", "stopped before it ended (no exit code recorded): " + progress(log)
 
@@ -99,8 +108,27 @@ def runs_of(out):
 
 
 def table(out):
-    """[(label, folder, state, detail)] of the sweep folder."""
-    return [(label, d) + state(d) for label, d in runs_of(out)]
+    """[(label, folder, state, detail)] of the sweep folder; with the Slurm task's state in the
+    detail for a sweep submitted to Slurm."""
+    rows = [(label, d) + state(d) for label, d in runs_of(out)]
+    job = slurm.job_id_of(out)
+    if not job:
+        return rows
+    tasks = slurm.task_index_of_runs(out)
+    queue = slurm.task_states(job)
+    out_rows = []
+    for label, d, st, detail in rows:
+        index = tasks.get(os.path.relpath(d, out))
+        where = queue.get(index) if index is not None else None
+        if where is None:
+            if st == "running":  # not in the queue any more and no summary: the task was lost
+                st, detail = "failed", "its Slurm task ended without a summary.json"
+        else:
+            if where.startswith("PENDING") and st in ("pending", "running", "interrupted"):
+                st = "pending" if st != "interrupted" else "interrupted"
+            detail = (detail + "; " if detail else "") + f"slurm {job}_{index}: {where}"
+        out_rows.append((label, d, st, detail))
+    return out_rows
 
 
 def main(argv):

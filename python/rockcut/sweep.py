@@ -2,6 +2,10 @@
 
   rockcut sweep CASE --vary water_depth_m=0,10,40,100,250,1000,2000 [--seeds 1,2,3] [--jobs N]
                 [--out DIR] [--set path=value ...] [--coupler PATH] [--plot-only]
+  rockcut sweep CASE --vary ... [--seeds ...] --scheduler slurm [--partition P] [--time HH:MM:SS]
+                [--cpus-per-task C] [--account A] [--sbatch-arg ARG ...] [--dry-run] --out DIR
+  rockcut sweep --status DIR      (rockcut status DIR)
+  rockcut sweep --collect DIR     (rockcut collect DIR)
 
 Runs `coupler run CASE --out DIR/<name>=<value> [--set path=value ...] --set <name>=<value>` once
 per value, --jobs at a time, each run's output in DIR/<name>=<value>/log.txt, and prints one line
@@ -34,6 +38,19 @@ A figure whose summary keys no run has (e.g. the pressures of a dry scene) is sk
                  be left out when --out is given: they are found from DIR's <name>=<value> and
                  seed=<S> folders)
 
+Re-running the same sweep skips the runs that have completed and continues the interrupted ones
+from their checkpoints (`coupler run --resume`, README "Checkpoint and restart"); a run whose
+command changed (another --set) starts afresh.
+
+On a cluster (--scheduler slurm) the sweep writes DIR/job.sbatch, a job array with one task per
+run (value x seed) listed in DIR/tasks.tsv, readable and editable, submits it with sbatch (not with
+--dry-run) and prints the job id and how to follow it. Each task asks for USR1 before its time
+limit, checkpoints, requeues itself and resumes: runs longer than the partition's limit complete,
+with the results of uninterrupted runs. The DEM and fluid threads of a task are --cpus-per-task
+(default the scene's dem.threads). Re-running the command while the job is queued prints the state
+and collects what has finished; once the job has left the queue it resubmits the runs that have
+not completed.
+
 Exit status: 0 if every run succeeded (coupler exit code 0), 1 if any failed (the sweep goes on and
 draws what it has), 2 on bad arguments, 130 if interrupted. With --plot-only: 0 once drawn (failed
 runs are listed in a note), 1 if DIR holds no run results.
@@ -45,9 +62,10 @@ import os
 import signal
 import subprocess
 import sys
+import shutil
 import time
 
-from . import runs
+from . import runs, slurm
 from .run_data import read_summary, scalar_fields
 # The figures, and the helpers the run loop shares with them.
 from .sweep_figures import Sweep, as_number, draw, note, run_dir
@@ -101,7 +119,27 @@ def parse_args(argv):
                    help="scene override passed to every run (repeatable)")
     p.add_argument("--coupler", help="the coupler to run (default build/bin/coupler)")
     p.add_argument("--plot-only", action="store_true", help="run nothing, collect and draw")
+    p.add_argument("--status", metavar="DIR", help="the state of each run of sweep folder DIR")
+    p.add_argument("--collect", metavar="DIR", help="sweep.csv and figures from DIR's finished runs")
+    cluster = p.add_argument_group("on a cluster")
+    cluster.add_argument("--scheduler", choices=["local", "slurm"], default="local",
+                         help="local: runs here, --jobs at a time (default); slurm: a job array")
+    cluster.add_argument("--partition", help="Slurm partition")
+    cluster.add_argument("--time", default="01:00:00",
+                         help="time limit of each task (Slurm format, default 01:00:00); a run "
+                              "longer than it checkpoints, requeues and resumes")
+    cluster.add_argument("--cpus-per-task", type=int, help="CPUs of each task (default the "
+                         "scene's dem.threads); the DEM and the fluid use them all")
+    cluster.add_argument("--account", help="Slurm account")
+    cluster.add_argument("--sbatch-arg", action="append", default=[], metavar="ARG",
+                         help="an extra #SBATCH line, e.g. --sbatch-arg=--qos=long (repeatable)")
+    cluster.add_argument("--dry-run", action="store_true",
+                         help="write DIR/job.sbatch and DIR/tasks.tsv, submit nothing")
+    if argv and argv[0] in ("--status", "--collect") and len(argv) == 2:
+        return argparse.Namespace(status=argv[1] if argv[0] == "--status" else None,
+                                  collect=argv[1] if argv[0] == "--collect" else None)
     args = p.parse_args(argv)
+    args.status = args.collect = None
     if not args.plot_only and (args.case is None or args.vary is None):
         p.error("CASE and --vary are required (unless --plot-only)")
     if args.out is None:
@@ -111,6 +149,13 @@ def parse_args(argv):
         args.out = os.path.join("out", f"sweep_{stem}")
     if args.jobs is not None and args.jobs < 1:
         p.error("--jobs must be at least 1")
+    if args.cpus_per_task is not None and args.cpus_per_task < 1:
+        p.error("--cpus-per-task must be at least 1")
+    if args.scheduler == "slurm":
+        try:
+            slurm.parse_time_limit(args.time)
+        except ValueError as e:
+            p.error(str(e))
     return args
 
 
@@ -166,22 +211,48 @@ def dem_threads(args):
 # Running
 
 
-def start_run(args, name, value, seed):
-    d = run_dir(args.out, name, value, seed)
-    os.makedirs(d, exist_ok=True)
-    # Files of an earlier sweep in the same folder must not pass for this run's results.
-    for stale in ("summary.json", "sweep_run.json", "run.h5", "run.xdmf", "log.txt"):
-        if os.path.exists(os.path.join(d, stale)):
-            os.remove(os.path.join(d, stale))
+def run_sets(args, name, value, seed):
+    """The --set overrides of one run: the sweep's, the seed's, then the varied value's."""
     sets = list(args.set)
     if seed is not None:
         sets.append(f"dem.specimen.seed={seed}")
     sets.append(f"{name}={value}")  # last, so that it wins over a --set of the same field
-    cmd = runs.command(args.case, d, sets, args.coupler)
-    log = open(os.path.join(d, "log.txt"), "w")
-    log.write("$ " + " ".join(cmd) + "\n")
+    return sets
+
+
+def earlier_run(d, cmd):
+    """'done' when folder `d` holds a completed run of the command `cmd`, 'resume' when it holds
+    a run of `cmd` that did not complete but left a checkpoint, else None (start afresh)."""
+    try:
+        with open(os.path.join(d, "sweep_run.json")) as f:
+            record = json.load(f)
+    except (OSError, ValueError):
+        return None
+    if record.get("command") != cmd:
+        return None
+    summary = read_summary(d) or {}
+    if summary.get("status") == "completed" and record.get("exit_code") == 0:
+        return "done"
+    has_checkpoint = os.path.isdir(os.path.join(d, "checkpoints")) and any(
+        f.endswith(".h5") for f in os.listdir(os.path.join(d, "checkpoints")))
+    return "resume" if has_checkpoint else None
+
+
+def start_run(args, name, value, seed):
+    d = run_dir(args.out, name, value, seed)
+    os.makedirs(d, exist_ok=True)
+    cmd = runs.command(args.case, d, run_sets(args, name, value, seed), args.coupler)
+    resume = earlier_run(d, cmd) == "resume"
+    if not resume:
+        # Files of an earlier sweep in the same folder must not pass for this run's results.
+        for stale in ("summary.json", "sweep_run.json", "run.h5", "run.xdmf", "log.txt"):
+            if os.path.exists(os.path.join(d, stale)):
+                os.remove(os.path.join(d, stale))
+        shutil.rmtree(os.path.join(d, "checkpoints"), ignore_errors=True)
+    log = open(os.path.join(d, "log.txt"), "a" if resume else "w")
+    log.write("$ " + " ".join(cmd + (["--resume"] if resume else [])) + "\n")
     log.flush()
-    proc = runs.start(cmd, log)
+    proc = runs.start(cmd + (["--resume"] if resume else []), log)
     # Started, not finished: `rockcut status` tells a run still going from one whose sweep stopped.
     with open(os.path.join(d, "sweep_run.json"), "w") as f:
         json.dump({"command": cmd, "pid": proc.pid}, f, indent=1)
@@ -204,16 +275,72 @@ def finish_run(args, name, value, seed, proc, log, t0, cmd):
     return ok
 
 
+def write_plan(args, name, values, seeds):
+    os.makedirs(args.out, exist_ok=True)
+    with open(os.path.join(args.out, PLAN), "w") as f:  # what `rockcut status` lists as pending
+        json.dump({"case": args.case, "name": name, "values": values, "seeds": seeds,
+                   "set": args.set, "scheduler": args.scheduler}, f, indent=1)
+
+
+def submit_sweep(args, name, values, seeds):
+    """--scheduler slurm: writes the job array and submits it (or, while an earlier job of this
+    sweep is queued, says so). Returns the exit status."""
+    job = slurm.job_id_of(args.out)
+    if job and not args.dry_run and slurm.task_states(job):
+        print(f"sweep: job {job} of {args.out} is still queued or running: not submitted again")
+        return 0
+    cpus = args.cpus_per_task or dem_threads(args)
+    scene = runs.effective_scene(args.case, args.set, args.coupler)
+    coupled = "fluid" in scene_blocks(scene)
+    threads = [f"dem.threads={cpus}"] + ([f"fluid.threads={cpus}"] if coupled else [])
+    write_plan(args, name, values, seeds)
+    tasks = []
+    for value, seed in [(v, s) for s in (seeds or [None]) for v in values]:
+        d = run_dir(args.out, name, value, seed)
+        os.makedirs(d, exist_ok=True)
+        sets = run_sets(args, name, value, seed) + threads
+        argv = [a for s in sets for a in ("--set", s)]
+        tasks.append((os.path.relpath(d, args.out), argv))
+        with open(os.path.join(d, "sweep_run.json"), "w") as f:  # the command, no exit code yet
+            json.dump({"command": runs.command(args.case, d, sets, args.coupler),
+                       "scheduler": "slurm"}, f, indent=1)
+    script = slurm.write_job(args.out, args.coupler, args.case, tasks, args.time, cpus,
+                             args.partition, args.account, args.sbatch_arg)
+    print(f"sweep: {len(tasks)} runs of {args.case} as a Slurm job array: {script}")
+    if args.dry_run:
+        print(f"sweep: not submitted (--dry-run); submit with: sbatch {script}")
+        return 0
+    try:
+        job = slurm.submit(args.out)
+    except (RuntimeError, FileNotFoundError) as e:
+        print(f"sweep: {e}", file=sys.stderr)
+        return 1
+    print(f"sweep: submitted job {job}; follow it with: scripts/rockcut status {args.out}\n"
+          f"       and collect what has finished with: scripts/rockcut collect {args.out}")
+    return 0
+
+
+def scene_blocks(scene_text):
+    """The top-level blocks of a scene in text format (e.g. {'time', 'dem', 'fluid'})."""
+    import re
+    return set(re.findall(r"^([a-z_]+)\s*\{", scene_text, flags=re.M))
+
+
 def run_sweep(args, name, values, seeds):
     """Runs every value (and seed), --jobs at a time. Returns True if all exited with 0."""
     jobs = args.jobs or max(1, runs.cpu_count() // dem_threads(args))
     runs.side_by_side(jobs)
     # Seed by seed: the first seed's whole curve is done before the second seed starts.
     pending = [(v, s) for s in (seeds or [None]) for v in values]
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, PLAN), "w") as f:  # what `rockcut status` lists as pending
-        json.dump({"case": args.case, "name": name, "values": values, "seeds": seeds,
-                   "set": args.set}, f, indent=1)
+    write_plan(args, name, values, seeds)
+    done = [k for k in pending if earlier_run(
+        run_dir(args.out, name, *k),
+        runs.command(args.case, run_dir(args.out, name, *k), run_sets(args, name, *k),
+                     args.coupler)) == "done"]
+    if done:
+        print(f"sweep: {len(done)} of {len(pending)} runs completed earlier; not run again",
+              flush=True)
+        pending = [k for k in pending if k not in done]
     print(f"sweep: {len(pending)} runs of {args.case} ({name} = {', '.join(values)}"
           + ("" if seeds is None else f"; seeds {', '.join(map(str, seeds))}")
           + f"), {jobs} at a time, into {args.out}", flush=True)
@@ -265,6 +392,8 @@ def collect(out, name, values, seeds=None):
                 record = json.load(f)
             if "exit_code" in record:  # absent while the run goes (or its sweep stopped)
                 row["exit_code"] = record["exit_code"]
+            elif slurm.exit_code_of(d) is not None:  # a Slurm task's
+                row["exit_code"] = slurm.exit_code_of(d)
         except (OSError, ValueError):
             pass  # run outside this script, or before it recorded exit codes
         if not summary:
@@ -296,6 +425,10 @@ def write_csv(path, name, rows):
 
 def main(argv):
     args = parse_args(argv)
+    if args.status or args.collect:
+        from . import collect as collect_verb, status as status_verb
+        return (status_verb.main([args.status]) if args.status
+                else collect_verb.main([args.collect]))
     name, values = args.vary if args.vary else values_in(args.out)
     seeds = args.seeds
     ok = True
@@ -305,6 +438,8 @@ def main(argv):
         except SystemExit as e:
             print(e, file=sys.stderr)
             return 2
+        if args.scheduler == "slurm":
+            return submit_sweep(args, name, values, seeds)
         ok = run_sweep(args, name, values, seeds)
     elif seeds is None:
         seeds = seeds_in(args.out, name, values)

@@ -149,7 +149,15 @@ PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP
         raise Unavailable(f"no pid file {path}")
 
     def stop(self):
-        """Stops exactly the daemons this cluster started (and so their jobs)."""
+        """Cancels this cluster's jobs, then stops exactly the daemons it started."""
+        if "slurmctld" in self.pids:
+            subprocess.run(["scancel", "--full", "--user=root"], env=self.env, capture_output=True)
+            deadline = time.time() + 30
+            while time.time() < deadline:
+                r = subprocess.run(["squeue", "-h"], env=self.env, capture_output=True, text=True)
+                if r.returncode != 0 or not r.stdout.strip():
+                    break
+                time.sleep(0.5)
         for name in ("slurmd", "slurmctld", "munged"):
             pid = self.pids.pop(name, None)
             if pid is None:

@@ -1,0 +1,112 @@
+"""The water-depth sweep as a Slurm job array against a real single-node Slurm (munged, slurmctld
+and slurmd started by this test, tests/slurm/slurm_cluster.py): 2 depths x 2 seeds of a short
+reduced saturated cut, each task with a time limit shorter than its run, so that tasks are warned
+(USR1), checkpoint, requeue and resume. The collected sweep.csv must equal the same sweep run
+locally, value for value (the wall-time columns aside).
+
+  slurm_sweep_test.py --coupler PATH --tmp DIR      (ctest; exit 77 = skipped, with the reason)
+
+Timing: Slurm's time limits are whole minutes, so each task gets one minute and the warning 55 s
+before it; slurmctld checks time limits about every 30 s, so a task is warned 5-35 s after it
+starts, and a run of this cut takes 30-40 s on one core of this 2-core machine.
+"""
+import argparse
+import csv
+import glob
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)  # the test's own helper, not the package
+from slurm_cluster import SlurmCluster, Unavailable  # noqa: E402
+
+SKIPPED = 77
+ROCKCUT = os.path.join(ROOT, "scripts", "rockcut")
+CASE = os.path.join(ROOT, "cases", "cutting", "saturated_reduced.pbtxt")
+# Summary values that measure the machine, not the run.
+WALL = {"wall_time_s", "particle_steps_per_s", "dem_busy_s", "dem_after_reply_s", "fluid_busy_s",
+        "fluid_after_reply_s"}
+
+
+def rockcut(args, env):
+    r = subprocess.run([ROCKCUT] + args, env=env, capture_output=True, text=True)
+    print("$ rockcut " + " ".join(args) + "\n" + r.stdout + r.stderr, flush=True)
+    return r
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--coupler", required=True)
+    p.add_argument("--tmp", required=True)
+    a = p.parse_args()
+    tmp = os.path.join(a.tmp, "slurm_sweep")
+    common = [CASE, "--vary", "water_depth_m=0,2000", "--seeds", "1,2", "--coupler", a.coupler,
+              "--set", "time.end_time_s=0.03", "--set", "output.frame_interval_s=0.01"]
+    try:
+        with SlurmCluster(os.path.join(tmp, "cluster")) as cluster:
+            env = dict(cluster.env)
+            env["PYTHONPATH"] = os.path.join(ROOT, "python")
+            sdir = os.path.join(tmp, "on_slurm")
+            r = rockcut(["sweep"] + common + ["--scheduler", "slurm", "--time", "1",
+                                              "--cpus-per-task", "1",
+                                              "--sbatch-arg=--signal=B:USR1@55", "--out", sdir],
+                        env)
+            assert r.returncode == 0, "the submission failed"
+            with open(os.path.join(sdir, "slurm_job_id")) as f:
+                job = f.read().strip()
+            deadline = time.time() + 600
+            while time.time() < deadline:
+                q = subprocess.run(["squeue", "-h", "-r", "-j", job], env=env,
+                                   capture_output=True, text=True)
+                if q.returncode == 0 and not q.stdout.strip():
+                    break
+                time.sleep(3)
+            else:
+                rockcut(["status", sdir], env)
+                raise AssertionError("the job array did not finish within 600 s:\n" +
+                                     cluster.log_tail())
+            rockcut(["status", sdir], env)
+            r = rockcut(["collect", sdir], env)
+            assert r.returncode == 0, "collect failed"
+            resumed = [f for f in glob.glob(os.path.join(sdir, "*", "*", "log.txt"))
+                       if "resume     from" in open(f, errors="replace").read()]
+            print(f"{len(resumed)} of 4 runs were requeued at their time limit and resumed")
+            assert resumed, "no task reached its time limit: nothing was checkpointed and resumed"
+    except Unavailable as e:
+        print(f"SKIPPED: {e}")
+        return SKIPPED
+
+    # The same sweep here, with the tasks' thread counts.
+    ldir = os.path.join(tmp, "local")
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.path.join(ROOT, "python")
+    r = rockcut(["sweep"] + common + ["--set", "dem.threads=1", "--set", "fluid.threads=1",
+                                      "--jobs", "2", "--out", ldir], env)
+    assert r.returncode == 0, "the local sweep failed"
+    slurm_rows, local_rows = read_csv(os.path.join(sdir, "sweep.csv")), \
+        read_csv(os.path.join(ldir, "sweep.csv"))
+    assert len(slurm_rows) == len(local_rows) == 4
+    assert set(slurm_rows[0]) == set(local_rows[0]), \
+        f"columns differ: {set(slurm_rows[0]) ^ set(local_rows[0])}"
+    compared = 0
+    for s, l in zip(slurm_rows, local_rows):
+        for key in s:
+            if key in WALL:
+                continue
+            assert s[key] == l[key], \
+                f"{key} differs at depth {s['water_depth_m']} seed {s['seed']}: {s[key]} vs {l[key]}"
+            compared += 1
+    print(f"sweep.csv: {compared} values equal on Slurm and locally")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

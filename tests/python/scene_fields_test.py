@@ -5,7 +5,6 @@ scene (runs.effective_scene: the bases merged).
 
   tests/python/scene_fields_test.py --coupler build/bin/coupler --tmp DIR
 """
-import os
 import unittest
 
 import harness  # tests/python/harness.py: the command line

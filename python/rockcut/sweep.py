@@ -48,7 +48,7 @@ import sys
 import time
 
 from . import runs
-from .run_data import read_summary, scalar_fields
+from .run_data import read_summary
 # The figures, and the helpers the run loop shares with them.
 from .sweep_figures import Sweep, as_number, draw, note, run_dir
 
@@ -154,14 +154,6 @@ def sorted_values(values):
     return list(values)
 
 
-def dem_threads(args):
-    """dem.threads as the run will see it (the effective scene with the --set overrides; the default
-    is 1), for choosing --jobs."""
-    scene = runs.effective_scene(args.case, args.set, args.coupler)
-    threads = scalar_fields(scene, "dem").get("threads")  # dem's own, not specimen's
-    return int(threads) if threads else 1
-
-
 # ---------------------------------------------------------------------------------------------
 # Running
 
@@ -206,7 +198,7 @@ def finish_run(args, name, value, seed, proc, log, t0, cmd):
 
 def run_sweep(args, name, values, seeds):
     """Runs every value (and seed), --jobs at a time. Returns True if all exited with 0."""
-    jobs = args.jobs or max(1, runs.cpu_count() // dem_threads(args))
+    jobs = args.jobs or runs.default_jobs(args.case, args.set, args.coupler)
     runs.side_by_side(jobs)
     # Seed by seed: the first seed's whole curve is done before the second seed starts.
     pending = [(v, s) for s in (seeds or [None]) for v in values]

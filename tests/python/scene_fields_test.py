@@ -57,6 +57,15 @@ class ScalarFields(unittest.TestCase):
                                0.5 * rock["shear_strength_n_per_m"])
         self.assertAlmostEqual(float(sets["fluid.smoothing_length_m"]), 0.003)
 
+    def test_runs_side_by_side_follow_the_dem_threads_of_the_effective_scene(self):
+        dry = runs.case("cutting", "dry.pbtxt")  # dem { threads: 2 }, its rock from a base
+        self.assertEqual(runs.dem_threads(dry, (), ARGS.coupler), 2)
+        self.assertEqual(runs.dem_threads(dry, ["dem.threads=3"], ARGS.coupler), 3)
+        self.assertEqual(runs.dem_threads(runs.case("cutting", "dry_reduced.pbtxt"), (),
+                                          ARGS.coupler), 1)  # the default
+        self.assertEqual(runs.default_jobs(dry, ["dem.threads=1"], ARGS.coupler),
+                         runs.cpu_count())
+
     def test_effective_scene_applies_overrides_and_refuses_a_bad_scene(self):
         text = runs.effective_scene(runs.case("cutting", "dry_reduced.pbtxt"), ["dem.threads=3"],
                                     ARGS.coupler)

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "run/expected_error.hpp"
+#include "scene/scene_loader.hpp"
 
 namespace rockcut::coupler {
 namespace {
@@ -144,6 +145,31 @@ TEST(ExpectedError, ABadTableIsNamedWithItsLine) {
   } catch (const std::runtime_error& e) {
     EXPECT_THAT(e.what(), HasSubstr("none.csv:0: cannot read the accuracy study's table"));
   }
+}
+
+TEST(ExpectedError, TheStartUpLineOfTheDefaultSceneAndWithoutTheTable) {
+  // The default scene at the study's default settings: dt_safety 0.2 of the DEM limit, N = 3 at
+  // 0.0705 of the stiffness limit per step, h / diameter 2.5, the study's disc size.
+  const auto loaded = rockcut::scene::load_scene(fs::path(ROCKCUT_SOURCE_DIR) / "cases" / "cutting" /
+                                                 "saturated_reduced.pbtxt");
+  TimePlan plan;
+  plan.dt_s = 1e-7;
+  plan.coupling_interval = 3;
+  const double dem_limit_s = 5e-7, stiffness_limit_s = 1e-7 / 0.0705;
+  const auto line = expected_error_line(loaded.scene, plan, dem_limit_s, stiffness_limit_s,
+                                        ROCKCUT_BIN_DIR);
+  ASSERT_TRUE(line.has_value());
+  const ErrorModel m = read_error_model(kTable);
+  const double e = *expected_force_error(m, {0.2, 3 * 0.0705, 2.5, 1.0}, nullptr);
+  EXPECT_THAT(*line, HasSubstr("expected error of the mean horizontal force about " +
+                               std::to_string(static_cast<int>(std::lround(100 * e))) + " %"));
+  // A program without the table beside it says so and goes on.
+  const fs::path lonely = fs::path(ROCKCUT_TEST_TMP) / "expected_error" / "no_table" / "bin";
+  fs::create_directories(lonely);
+  const auto without = expected_error_line(loaded.scene, plan, dem_limit_s, stiffness_limit_s, lonely);
+  ASSERT_TRUE(without.has_value());
+  EXPECT_THAT(*without, HasSubstr("accuracy   no estimate: "));
+  EXPECT_THAT(*without, HasSubstr("share/rockcut/expected_error.csv:0: cannot read"));
 }
 
 }  // namespace

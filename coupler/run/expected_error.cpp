@@ -1,44 +1,54 @@
 #include "run/expected_error.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <span>
+#include <sstream>
+#include <stdexcept>
 
 namespace rockcut::coupler {
 
 namespace {
 
-// docs/accuracy.md: errors of the mean over seeds against the finest setting of each ladder
-// (scripts/accuracy, the reduced saturated cut at 0 m, 24 mm). Coarsest first, finest (0) last.
-struct LadderPoint {
-  double value;
-  double force_error;   ///< relative error of the mean horizontal force
-};
-// The default rock (set H): seeds 1-4 and 14 mm of steady cut. The seed scatter of each mean is 6-14 % (docs/accuracy.md), so errors below about 15 % are
-// upper bounds more than estimates.
-constexpr LadderPoint kDtSafety[] = {{0.4, 0.09}, {0.2, 0.08}, {0.1, 0.08}, {0.05, 0.13},
-                                     {0.025, 0.0}};
-// N dt / the stiffness limit (N x 0.0705 in the study). The coarsest is the largest N the limit
-// allows (N = 14, 0.987 of the limit; seeds 1-4): any stable N lies at or below 1. N = 10 down to
-// N = 1 (no lag, the finest) are the interval study at 0 m (docs/accuracy.md, "The coupling
-// interval over sixteen seeds"): 0.42, 0.33, 0.10, 0.09, 0.00 at N = 10, 7, 5, 3, 2 (N = 7 and 2
-// over seeds 1-8, the others over seeds 1-16; standard errors 7-11 %).
-constexpr LadderPoint kFluidStepRatio[] = {{1.0, 0.54},   {0.705, 0.42}, {0.493, 0.33},
-                                           {0.352, 0.10}, {0.211, 0.09}, {0.141, 0.0},
-                                           {0.0705, 0.0}};
-constexpr LadderPoint kHPerDiameter[] = {{3.33, 0.15}, {2.5, 0.04}, {1.67, 0.0}};
-constexpr LadderPoint kSizeScale[] = {{1.5, 0.31}, {1.0, 0.08}, {0.75, 0.16}, {0.5, 0.0}};
-// The reduced scene's mean radius, the size ladder's 1.
+// The reduced scene's mean radius, the size ladder's 1 (the study's scene, not a table entry).
 constexpr double kStudyMeanRadiusM = 1.2e-3;
 
+[[noreturn]] void bad(const std::filesystem::path& csv, int line, const std::string& problem) {
+  throw std::runtime_error(csv.string() + ":" + std::to_string(line) + ": " + problem);
+}
+
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) {
+    while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\r')) cell.pop_back();
+    while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
+    cells.push_back(cell);
+  }
+  return cells;
+}
+
+double parse_number(const std::string& text, const std::filesystem::path& csv, int line,
+                    const std::string& column) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+    bad(csv, line, column + " \"" + text + "\" is not a number");
+  return value;
+}
+
 // The error at `value`, linear in log(value) between the ladder's settings. A value finer than the
-// finest gets the finest's 0 (the study cannot resolve it); coarser than the coarsest: none.
+// finest gets the finest's error (the study cannot resolve it); coarser than the coarsest: none.
 std::optional<double> interpolate(std::span<const LadderPoint> ladder, double value) {
   const bool descending = ladder.front().value > ladder.back().value;
   const auto coarser = [&](double a, double b) { return descending ? a > b : a < b; };
   if (coarser(value, ladder.front().value * (1 + 1e-9))) return std::nullopt;
-  if (!coarser(value, ladder.back().value)) return 0.0;
+  if (!coarser(value, ladder.back().value)) return ladder.back().force_error;
   for (std::size_t k = 0; k + 1 < ladder.size(); ++k) {
     const LadderPoint& a = ladder[k];
     const LadderPoint& b = ladder[k + 1];
@@ -64,16 +74,71 @@ std::string number(double v) {
 
 }  // namespace
 
-std::optional<double> expected_force_error(const CutSettings& s, std::string* detail) {
+std::filesystem::path error_model_path(const std::filesystem::path& program_dir) {
+  return program_dir.parent_path() / "share" / "rockcut" / "expected_error.csv";
+}
+
+ErrorModel read_error_model(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  if (!in) bad(csv, 0, std::string("cannot read the accuracy study's table: ") + std::strerror(errno));
+  ErrorModel model;
+  const std::pair<const char*, std::vector<LadderPoint>*> ladders[] = {
+      {"dt_safety", &model.dt_safety},
+      {"fluid_step_ratio", &model.fluid_step_ratio},
+      {"h_per_diameter", &model.h_per_diameter},
+      {"size_scale", &model.size_scale}};
+  int column_ladder = -1, column_value = -1, column_error = -1;
+  int line_no = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_no;
+    if (line.empty() || line[0] == '#') continue;
+    const std::vector<std::string> cells = split_csv(line);
+    if (column_ladder < 0) {  // the header
+      for (int c = 0; c < static_cast<int>(cells.size()); ++c) {
+        if (cells[c] == "ladder") column_ladder = c;
+        if (cells[c] == "value") column_value = c;
+        if (cells[c] == "force_error") column_error = c;
+      }
+      if (column_ladder < 0 || column_value < 0 || column_error < 0)
+        bad(csv, line_no, "the header must name the columns ladder, value and force_error");
+      continue;
+    }
+    const int needed = std::max({column_ladder, column_value, column_error});
+    if (static_cast<int>(cells.size()) <= needed)
+      bad(csv, line_no, "expected " + std::to_string(needed + 1) + " columns or more");
+    const auto ladder = std::find_if(std::begin(ladders), std::end(ladders),
+                                     [&](const auto& l) { return cells[column_ladder] == l.first; });
+    if (ladder == std::end(ladders))
+      bad(csv, line_no, "unknown ladder \"" + cells[column_ladder] +
+                            "\": one of dt_safety, fluid_step_ratio, h_per_diameter, size_scale");
+    const LadderPoint point{parse_number(cells[column_value], csv, line_no, "value"),
+                            parse_number(cells[column_error], csv, line_no, "force_error")};
+    if (point.value <= 0.0 || point.force_error < 0.0)
+      bad(csv, line_no, "a setting must be > 0 and its error >= 0");
+    std::vector<LadderPoint>& points = *ladder->second;
+    if (!points.empty() && !(point.value < points.back().value))
+      bad(csv, line_no, std::string(ladder->first) + ": settings go from the coarsest (largest) "
+                        "to the finest (smallest)");
+    points.push_back(point);
+  }
+  if (column_ladder < 0) bad(csv, line_no, "the header must name the columns ladder, value and force_error");
+  for (const auto& [name, points] : ladders)
+    if (points->size() < 2)
+      bad(csv, line_no, std::string("the ladder ") + name + " needs two settings or more");
+  return model;
+}
+
+std::optional<double> expected_force_error(const ErrorModel& model, const CutSettings& s,
+                                           std::string* detail) {
   struct Part {
     const char* name;
     std::span<const LadderPoint> ladder;
     double value;
   };
-  const Part parts[] = {{"dt_safety", kDtSafety, s.dt_safety},
-                        {"fluid step / stiffness limit", kFluidStepRatio, s.fluid_step_ratio},
-                        {"h / mean diameter", kHPerDiameter, s.h_per_diameter},
-                        {"disc size / reduced scene's", kSizeScale, s.size_scale}};
+  const Part parts[] = {{"dt_safety", model.dt_safety, s.dt_safety},
+                        {"fluid step / stiffness limit", model.fluid_step_ratio, s.fluid_step_ratio},
+                        {"h / mean diameter", model.h_per_diameter, s.h_per_diameter},
+                        {"disc size / reduced scene's", model.size_scale, s.size_scale}};
   double sum2 = 0.0;
   std::string text;
   for (const Part& p : parts) {
@@ -93,9 +158,16 @@ std::optional<double> expected_force_error(const CutSettings& s, std::string* de
 }
 
 std::optional<std::string> expected_error_line(const rockcut::Scene& scene, const TimePlan& plan,
-                                               double dem_limit_s, double fluid_stiffness_limit_s) {
+                                               double dem_limit_s, double fluid_stiffness_limit_s,
+                                               const std::filesystem::path& program_dir) {
   if (!scene.has_fluid() || !scene.dem().has_tool() || !scene.dem().has_specimen()) {
     return std::nullopt;
+  }
+  ErrorModel model;
+  try {
+    model = read_error_model(error_model_path(program_dir));
+  } catch (const std::runtime_error& e) {
+    return std::string("accuracy   no estimate: ") + e.what();
   }
   const rockcut::Specimen& sp = scene.dem().specimen();
   CutSettings s;
@@ -106,7 +178,7 @@ std::optional<std::string> expected_error_line(const rockcut::Scene& scene, cons
   s.h_per_diameter = scene.fluid().smoothing_length_m() / (sp.radius_min_m() + sp.radius_max_m());
   s.size_scale = 0.5 * (sp.radius_min_m() + sp.radius_max_m()) / kStudyMeanRadiusM;
   std::string detail;
-  const std::optional<double> e = expected_force_error(s, &detail);
+  const std::optional<double> e = expected_force_error(model, s, &detail);
   if (!e) return "accuracy   not covered by the work-precision study (docs/accuracy.md): " + detail;
   return "accuracy   expected error of the mean horizontal force about " + percent(*e) +
          " (root sum square of " + detail + "; docs/accuracy.md, against the study's finest "

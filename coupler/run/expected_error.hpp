@@ -1,9 +1,12 @@
 // The expected error of a cutting run's settings, from the work-precision study of docs/accuracy.md
-// (scripts/accuracy): printed at start-up where the study covers the scene.
+// (rockcut accuracy): printed at start-up where the study covers the scene. The study's numbers
+// are data (coupler/data/expected_error.csv), read at run time from beside the program.
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rockcut/scene.pb.h"
 #include "run/time_plan.hpp"
@@ -18,12 +21,37 @@ struct CutSettings {
   double size_scale = 0.0;      ///< mean radius / that of saturated_reduced (1.2 mm)
 };
 
-/// One line for the start-up report: the expected relative error of the mean horizontal force for
-/// each setting, and their root sum square; or why the study does not cover the scene. Nothing for scenes that are not saturated cuts of a specimen.
-std::optional<std::string> expected_error_line(const rockcut::Scene& scene, const TimePlan& plan,
-                                               double dem_limit_s, double fluid_stiffness_limit_s);
+/// One setting of a ladder and the relative error of the mean horizontal force there.
+struct LadderPoint {
+  double value = 0.0;
+  double force_error = 0.0;
+};
 
-/// The same from settings (for tests): empty when a setting is outside the study's range.
-std::optional<double> expected_force_error(const CutSettings& settings, std::string* detail);
+/// The study's four ladders (the columns of CutSettings), each coarsest first, finest last.
+struct ErrorModel {
+  std::vector<LadderPoint> dt_safety, fluid_step_ratio, h_per_diameter, size_scale;
+};
+
+/// Where the study's table lies for a program in `program_dir`: ../share/rockcut/expected_error.csv
+/// (the build tree and an installation alike).
+std::filesystem::path error_model_path(const std::filesystem::path& program_dir);
+
+/// Reads the study's table (CSV: '#' comment lines, a header naming `ladder`, `value` and
+/// `force_error`, one row per setting). Throws std::runtime_error "FILE:LINE: problem" on a file
+/// that cannot be read, a bad number, an unknown ladder, a ladder with fewer than two settings or
+/// settings out of order.
+ErrorModel read_error_model(const std::filesystem::path& csv);
+
+/// One line for the start-up report: the expected relative error of the mean horizontal force for
+/// each setting, and their root sum square; or why the study does not cover the scene, or why its
+/// table could not be read. Nothing for scenes that are not saturated cuts of a specimen.
+std::optional<std::string> expected_error_line(const rockcut::Scene& scene, const TimePlan& plan,
+                                               double dem_limit_s, double fluid_stiffness_limit_s,
+                                               const std::filesystem::path& program_dir);
+
+/// The same from settings: empty when a setting is coarser than the study's coarsest; a setting
+/// finer than the finest gets the finest's error (the study cannot resolve it).
+std::optional<double> expected_force_error(const ErrorModel& model, const CutSettings& settings,
+                                           std::string* detail);
 
 }  // namespace rockcut::coupler

@@ -450,7 +450,8 @@ int RunSession::run() {
     for (const Limit& l : fluid_limits) {
       if (l.name == "pore_fluid_stiffness") stiffness_limit_s = l.dt_max_s;
     }
-    accuracy_line_ = expected_error_line(scene_, plan_, dem_limit_s, stiffness_limit_s);
+    accuracy_line_ =
+        expected_error_line(scene_, plan_, dem_limit_s, stiffness_limit_s, options_.module_dir);
     if (resume_from_) {
       check_resume_scene();
       restore_from_checkpoint();  // before run.h5 is touched: a refusal leaves it whole

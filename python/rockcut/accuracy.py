@@ -16,14 +16,19 @@ horizontal and vertical force, the total bond breaks and the node pressures P1-P
 scatter (standard error of the mean over seeds) is reported beside it: an error below the scatter
 is not resolved by the study.
 
-Writes DIR/accuracy.csv (one row per run), DIR/accuracy.md (the table) and DIR/work_precision.png
-(error of the mean horizontal force against wall time, log-log, one line per ladder).
+Writes DIR/accuracy.csv (one row per run), DIR/accuracy.md (the table), DIR/work_precision.png
+(error of the mean horizontal force against wall time, log-log, one line per ladder) and
+DIR/expected_error.csv, the error of the mean horizontal force per ladder setting in the variables
+of the coupler's start-up estimate (coupler/data/expected_error.csv has this form): dt_safety,
+fluid_step_ratio (N dt / the pore_fluid_stiffness limit, from the runs' start-up reports),
+h_per_diameter and size_scale.
 """
 import argparse
 import concurrent.futures
 import csv
 import json
 import os
+import re
 import sys
 
 from . import runs
@@ -98,6 +103,42 @@ def read(out_dir):
     return s
 
 
+# A ladder of the study -> the coupler's name of its variable (coupler/run/expected_error.hpp).
+MODEL_LADDERS = {"dt_safety": "dt_safety", "N": "fluid_step_ratio", "h": "h_per_diameter",
+                 "size": "size_scale"}
+
+
+def fluid_step_per_interval(log):
+    """dt / the pore_fluid_stiffness limit from a run's start-up report (log.txt), or None: the
+    fluid step ratio of a coupling interval N is N times it."""
+    try:
+        with open(log) as f:
+            text = f.read()
+    except OSError:
+        return None
+    limit = re.search(r"pore_fluid_stiffness: dt <= (\S+) s", text)
+    dt = re.search(r"chosen dt = (\S+) s", text)
+    return float(dt.group(1)) / float(limit.group(1)) if limit and dt else None
+
+
+def model_rows(out, table, seeds):
+    """The rows of expected_error.csv: ladder (the model's variable), value, force_error, seeds."""
+    rows = []
+    per_n = fluid_step_per_interval(os.path.join(run_dir(out, "N", "1", seeds[0]), "log.txt"))
+    for e in table:
+        if e.get("missing"):
+            continue
+        value = e["value"]
+        if e["ladder"] == "N":
+            if per_n is None:
+                continue  # no start-up report to place N against the limit
+            value *= per_n
+        rows.append({"ladder": MODEL_LADDERS[e["ladder"]], "value": "%.4g" % value,
+                     "force_error": "%.4f" % e["error_force_horizontal_mean_n_per_m"],
+                     "seeds": e["runs"]})
+    return rows
+
+
 def analyse(out, seeds, ladders_=None):
     rows, table = [], []
     for ladder, settings in (ladders_ or ladders(None)).items():
@@ -118,7 +159,7 @@ def analyse(out, seeds, ladders_=None):
             if not rs:
                 table.append({"ladder": ladder, "setting": label, "missing": True})
                 continue
-            entry = {"ladder": ladder, "setting": label, "value": value,
+            entry = {"ladder": ladder, "setting": label, "value": value, "runs": len(rs),
                      "wall_time_s": mean([s["wall_time_s"] for s in rs]),
                      "coupling_interval": rs[0].get("coupling_interval"),
                      "particles": rs[0].get("particles")}
@@ -209,6 +250,10 @@ def main(argv):
     text = markdown(table, seeds)
     with open(os.path.join(a.out, "accuracy.md"), "w") as f:
         f.write(text)
+    with open(os.path.join(a.out, "expected_error.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=["ladder", "value", "force_error", "seeds"])
+        w.writeheader()
+        w.writerows(model_rows(a.out, table, seeds))
     with open(os.path.join(a.out, "accuracy.json"), "w") as f:
         json.dump(table, f, indent=1)
     plot(table, os.path.join(a.out, "work_precision.png"))

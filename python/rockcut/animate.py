@@ -3,8 +3,8 @@
   rockcut animate OUT [--color damage] [-o OUT/cut.mp4] [--gif] [--fps 10] [--width-px 800]
 
 Draws every frame of OUT/run.h5 (discs to scale as circles of their radius, coloured by the field
-chosen, the chisel where the time series puts its tip, a colour bar, the time and the tool travel
-in the title) and writes an MP4 (H.264, with Debian's ffmpeg; scripts/setup installs it) or, with
+chosen, the chisel where the time series puts its tip, the scene's walls where their velocity puts
+them, a colour bar, the time and the tool travel in the title) and writes an MP4 (H.264, with Debian's ffmpeg; scripts/setup installs it) or, with
 --gif or a FILE ending in .gif, a GIF (Pillow, no ffmpeg needed).
 
   --color damage    D = 1 - bonds / initial bonds, 0 to 1 (the frame field `damage`)
@@ -28,7 +28,7 @@ from matplotlib.colors import Normalize
 from matplotlib.patches import Polygon
 
 from .figures import block_extent, chisel_at, discs, plt
-from .run_data import read_run, tool_block, tool_polygon
+from .run_data import read_run, scene_walls, tool_block, tool_polygon
 
 
 FIELDS = {"damage": "damage", "pressure": "pressure", "velocity": "velocity"}
@@ -94,6 +94,7 @@ def render(out, color="damage", target=None, gif=False, fps=10, width_px=800):
         norm = Normalize(lo, hi if hi > lo else lo + 1e-12)
     tool = tool_block(run.scene)
     polys = [tool_at(run, tool, first, f.time_s) for f in frames]
+    walls = scene_walls(run.scene)
     # One view for the whole film: the block at the start and the tool along its path.
     lo, hi = block_extent(*first)
     for poly in (p for p in polys if p is not None):
@@ -126,6 +127,11 @@ def render(out, color="damage", target=None, gif=False, fps=10, width_px=800):
         coll = discs(ax, f["position"] * 1e3, f["radius"] * 1e3, array=values(color, f, p_hydro),
                      cmap="jet", norm=norm, linewidths=0)
         drawn.append(coll)
+        for w in walls:
+            xy = (w["vertices"] + w["velocity_m_s"] * f.time_s) * 1e3
+            if w["closed"]:
+                xy = np.vstack([xy, xy[:1]])
+            drawn.extend(ax.plot(xy[:, 0], xy[:, 1], color="k", lw=1.5, zorder=2))
         if polys[k] is not None:
             drawn.append(ax.add_patch(Polygon(polys[k] * 1e3, closed=True, fc="0.5", ec="k", lw=0.8,
                                               zorder=3)))

@@ -21,7 +21,6 @@ import csv
 import math
 import os
 import shlex
-import sys
 
 from . import runs
 from .run_data import read_summary

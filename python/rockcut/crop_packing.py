@@ -12,7 +12,6 @@ Discs are kept when their centre lies inside the window. --centre moves the wind
 origin before scaling.
 """
 import argparse
-import sys
 
 import numpy as np
 

@@ -184,6 +184,44 @@ def scalar_fields(text, name):
     return fields
 
 
+def blocks(text, name):
+    """The bodies of every `name { ... }` block of `text` in order, their nested blocks kept.
+    Comments must be removed first."""
+    found, pos = [], 0
+    opening = re.compile(r"\b" + re.escape(name) + r"\s*:?\s*\{")
+    while True:
+        m = opening.search(text or "", pos)
+        if not m:
+            return found
+        depth, i = 1, m.end()
+        while i < len(text) and depth:
+            depth += (text[i] == "{") - (text[i] == "}")
+            i += 1
+        found.append(text[m.end():i - 1])
+        pos = i
+
+
+def vec2(body):
+    """(x, y) of a Vec2 block's body; a field left out is 0 (scene.proto's default)."""
+    fields = scalar_fields("v {" + body + "}", "v")
+    return fields.get("x", 0.0), fields.get("y", 0.0)
+
+
+def scene_walls(scene_text):
+    """The walls of a scene (dem.walls) as dicts: name, vertices (k x 2 array [m]), closed, and
+    velocity_m_s (2,) [m/s]; a wall at time t lies at vertices + velocity_m_s t."""
+    walls = []
+    for body in blocks(without_comments(scene_text), "walls"):
+        own = own_fields("w {" + body + "}", "w")  # the wall's own fields, its vertices blanked
+        name = re.search(r'name\s*:\s*"([^"]*)"', own)
+        velocity = blocks(body, "velocity_m_s")
+        walls.append({"name": name.group(1) if name else "",
+                      "vertices": np.array([vec2(v) for v in blocks(body, "vertex_m")]).reshape(-1, 2),
+                      "closed": re.search(r"\bclosed\s*:\s*true", own) is not None,
+                      "velocity_m_s": np.array(vec2(velocity[0]) if velocity else (0.0, 0.0))})
+    return walls
+
+
 def tool_block(scene_text):
     """The scalar fields of the scene's `tool { ... }` block (defaults as in scene.proto)."""
     tool = {"cutting_angle_deg": 60.0, "clearance_angle_deg": 5.0, "cutting_depth_m": 0.02,

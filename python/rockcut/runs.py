@@ -7,6 +7,8 @@ the runs it starts (the commands of every verb go through here).
 import os
 import subprocess
 
+from .run_data import scalar_fields
+
 # The repository this package lives in: python/rockcut/ -> the root.
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CASES = os.path.join(REPO, "cases")
@@ -34,6 +36,18 @@ def cpu_count():
         return len(os.sched_getaffinity(0))
     except AttributeError:
         return os.cpu_count() or 1
+
+
+def dem_threads(scene, sets=(), coupler_path=None):
+    """dem.threads as a run of `scene` with the overrides `sets` will see it (its effective scene;
+    the default is 1)."""
+    threads = scalar_fields(effective_scene(scene, sets, coupler_path), "dem").get("threads")
+    return int(threads) if threads else 1  # dem's own field, not specimen's
+
+
+def default_jobs(scene, sets=(), coupler_path=None):
+    """How many runs of `scene` fit side by side: the CPUs divided by the run's DEM threads."""
+    return max(1, cpu_count() // dem_threads(scene, sets, coupler_path))
 
 
 def side_by_side(jobs):

@@ -66,7 +66,7 @@ import shutil
 import time
 
 from . import runs, slurm
-from .run_data import read_summary, scalar_fields
+from .run_data import read_summary
 # The figures, and the helpers the run loop shares with them.
 from .sweep_figures import Sweep, as_number, draw, note, run_dir
 
@@ -199,14 +199,6 @@ def sorted_values(values):
     return list(values)
 
 
-def dem_threads(args):
-    """dem.threads as the run will see it (the effective scene with the --set overrides; the default
-    is 1), for choosing --jobs."""
-    scene = runs.effective_scene(args.case, args.set, args.coupler)
-    threads = scalar_fields(scene, "dem").get("threads")  # dem's own, not specimen's
-    return int(threads) if threads else 1
-
-
 # ---------------------------------------------------------------------------------------------
 # Running
 
@@ -289,7 +281,7 @@ def submit_sweep(args, name, values, seeds):
     if job and not args.dry_run and slurm.task_states(job):
         print(f"sweep: job {job} of {args.out} is still queued or running: not submitted again")
         return 0
-    cpus = args.cpus_per_task or dem_threads(args)
+    cpus = args.cpus_per_task or runs.dem_threads(args.case, args.set, args.coupler)
     scene = runs.effective_scene(args.case, args.set, args.coupler)
     coupled = "fluid" in scene_blocks(scene)
     threads = [f"dem.threads={cpus}"] + ([f"fluid.threads={cpus}"] if coupled else [])
@@ -328,7 +320,7 @@ def scene_blocks(scene_text):
 
 def run_sweep(args, name, values, seeds):
     """Runs every value (and seed), --jobs at a time. Returns True if all exited with 0."""
-    jobs = args.jobs or max(1, runs.cpu_count() // dem_threads(args))
+    jobs = args.jobs or runs.default_jobs(args.case, args.set, args.coupler)
     runs.side_by_side(jobs)
     # Seed by seed: the first seed's whole curve is done before the second seed starts.
     pending = [(v, s) for s in (seeds or [None]) for v in values]

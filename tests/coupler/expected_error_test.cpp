@@ -1,53 +1,175 @@
-// The expected error printed at start-up: interpolation in the work-precision study's ladders
-// (docs/accuracy.md) and the refusal to extrapolate beyond the coarsest setting studied.
+// The expected error printed at start-up: the model reads the work-precision study's table
+// (coupler/data/expected_error.csv, beside the program as share/rockcut/expected_error.csv),
+// interpolates in its ladders and refuses to extrapolate beyond the coarsest setting studied. The
+// checks take their numbers from that file, not from a copy of it.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "run/expected_error.hpp"
+#include "scene/scene_loader.hpp"
 
 namespace rockcut::coupler {
 namespace {
 
-TEST(ExpectedError, FinestSettingsOfEveryLadderHaveNoErrorByDefinition) {
-  std::string detail;
-  const auto e = expected_force_error({0.025, 0.0705, 1.67, 0.5}, &detail);
-  ASSERT_TRUE(e.has_value()) << detail;
-  EXPECT_EQ(*e, 0.0);
-  // Finer than the study: below what it resolves, so the finest's 0 again (paper-scale discs).
-  EXPECT_EQ(*expected_force_error({0.01, 0.05, 1.0, 0.25}, nullptr), 0.0);
+namespace fs = std::filesystem;
+using testing::HasSubstr;
+
+const fs::path kTable = fs::path(ROCKCUT_SOURCE_DIR) / "coupler" / "data" / "expected_error.csv";
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
-TEST(ExpectedError, CoarserThanTheStudyIsNotCovered) {
-  std::string detail;
-  EXPECT_FALSE(expected_force_error({0.8, 1.0, 2.5, 1.0}, &detail).has_value());
-  EXPECT_NE(detail.find("dt_safety = 0.8"), std::string::npos) << detail;
-  EXPECT_FALSE(expected_force_error({0.2, 1.0, 2.5, 2.0}, &detail).has_value());
-  EXPECT_NE(detail.find("disc size"), std::string::npos) << detail;
+// The settings at each ladder's finest, with one of them replaced.
+CutSettings finest(const ErrorModel& m) {
+  return {m.dt_safety.back().value, m.fluid_step_ratio.back().value, m.h_per_diameter.back().value,
+          m.size_scale.back().value};
 }
 
-TEST(ExpectedError, InterpolatesBetweenStudiedSettingsAndCombinesByRootSumSquare) {
+TEST(ExpectedError, TheProgramsCopyOfTheTableIsTheStudys) {
+  // The coupler reads it beside itself (bin/../share/rockcut), as an installation lays it out.
+  const fs::path copy = error_model_path(fs::path(ROCKCUT_BIN_DIR));
+  EXPECT_EQ(copy, fs::path(ROCKCUT_BIN_DIR).parent_path() / "share" / "rockcut" / "expected_error.csv");
+  EXPECT_EQ(read(copy), read(kTable));
+}
+
+TEST(ExpectedError, EverySettingOfTheTableGivesItsError) {
+  const ErrorModel m = read_error_model(kTable);
+  EXPECT_GE(m.dt_safety.size(), 3u);
+  EXPECT_GE(m.fluid_step_ratio.size(), 3u);
   // One ladder at a time away from its finest: the result is that ladder's own error.
-  const double at_02 = *expected_force_error({0.2, 0.0705, 1.67, 0.5}, nullptr);
-  const double at_01 = *expected_force_error({0.1, 0.0705, 1.67, 0.5}, nullptr);
-  const double at_005 = *expected_force_error({0.05, 0.0705, 1.67, 0.5}, nullptr);
-  const double between = *expected_force_error({std::sqrt(0.005), 0.0705, 1.67, 0.5}, nullptr);
-  ASSERT_NE(at_01, at_005);  // so that the midpoint below tells the interpolation from a step
-  EXPECT_NEAR(between, 0.5 * (at_01 + at_005), 1e-12);  // linear in log(dt_safety), midpoint
-  const double n_only = *expected_force_error({0.025, 1.0, 1.67, 0.5}, nullptr);
-  const double both = *expected_force_error({0.2, 1.0, 1.67, 0.5}, nullptr);
-  EXPECT_NEAR(both, std::hypot(at_02, n_only), 1e-12);
-  // The study's values at its settings (docs/accuracy.md, set H): 8 % at
-  // dt_safety 0.2, 54 % at the largest stable N, 9 % at the coupler's N = 3 (0.211 of the
-  // stiffness limit, sixteen seeds), and between N = 5 (10 %) and N = 7 (33 %) linear in the log
-  // of N.
-  EXPECT_NEAR(at_02, 0.08, 1e-12);
-  EXPECT_NEAR(n_only, 0.54, 1e-12);
-  EXPECT_NEAR(*expected_force_error({0.025, 0.211, 1.67, 0.5}, nullptr), 0.09, 1e-12);
-  const double n6 = 6 * 0.0705;
-  const double s = std::log(n6 / 0.352) / std::log(0.493 / 0.352);
-  EXPECT_NEAR(*expected_force_error({0.025, n6, 1.67, 0.5}, nullptr), 0.10 + s * (0.33 - 0.10),
+  for (const LadderPoint& p : m.dt_safety) {
+    CutSettings s = finest(m);
+    s.dt_safety = p.value;
+    EXPECT_NEAR(*expected_force_error(m, s, nullptr),
+                std::hypot(p.force_error, m.fluid_step_ratio.back().force_error,
+                           std::hypot(m.h_per_diameter.back().force_error,
+                                      m.size_scale.back().force_error)),
+                1e-12);
+  }
+  for (const LadderPoint& p : m.fluid_step_ratio) {
+    CutSettings s = finest(m);
+    s.fluid_step_ratio = p.value;
+    std::string detail;
+    const double e = *expected_force_error(m, s, &detail);
+    EXPECT_NEAR(e, std::hypot(p.force_error, m.dt_safety.back().force_error,
+                              std::hypot(m.h_per_diameter.back().force_error,
+                                         m.size_scale.back().force_error)),
+                1e-12)
+        << detail;
+  }
+}
+
+TEST(ExpectedError, InterpolatesLinearlyInTheLogAndCombinesByRootSumSquare) {
+  const ErrorModel m = read_error_model(kTable);
+  const auto only = [&](auto field, double value) {
+    CutSettings s = finest(m);
+    s.*field = value;
+    return *expected_force_error(m, s, nullptr);
+  };
+  const LadderPoint a = m.fluid_step_ratio[1], b = m.fluid_step_ratio[2];
+  ASSERT_NE(a.force_error, b.force_error);  // so that the midpoint tells interpolation from a step
+  const double finest_rest = std::hypot(m.dt_safety.back().force_error,
+                                        std::hypot(m.h_per_diameter.back().force_error,
+                                                   m.size_scale.back().force_error));
+  const double mid = only(&CutSettings::fluid_step_ratio, std::sqrt(a.value * b.value));
+  EXPECT_NEAR(mid, std::hypot(0.5 * (a.force_error + b.force_error), finest_rest), 1e-12);
+  // Two ladders away from their finest: the root sum square of their errors.
+  CutSettings s = finest(m);
+  s.dt_safety = m.dt_safety.front().value;
+  s.size_scale = m.size_scale.front().value;
+  EXPECT_NEAR(*expected_force_error(m, s, nullptr),
+              std::hypot(m.dt_safety.front().force_error, m.size_scale.front().force_error,
+                         std::hypot(m.fluid_step_ratio.back().force_error,
+                                    m.h_per_diameter.back().force_error)),
               1e-12);
+}
+
+TEST(ExpectedError, CoarserThanTheStudyIsNotCoveredAndFinerGetsTheFinest) {
+  const ErrorModel m = read_error_model(kTable);
+  CutSettings s = finest(m);
+  s.dt_safety = 2 * m.dt_safety.front().value;
+  std::string detail;
+  EXPECT_FALSE(expected_force_error(m, s, &detail).has_value());
+  EXPECT_THAT(detail, HasSubstr("dt_safety = " ));
+  EXPECT_THAT(detail, HasSubstr("coarser than the study covers"));
+  s = finest(m);
+  s.size_scale = 2 * m.size_scale.front().value;
+  EXPECT_FALSE(expected_force_error(m, s, &detail).has_value());
+  EXPECT_THAT(detail, HasSubstr("disc size"));
+  // Finer than the study on every ladder (paper-scale discs): below what it resolves.
+  const CutSettings fine = {0.5 * m.dt_safety.back().value, 0.5 * m.fluid_step_ratio.back().value,
+                            0.5 * m.h_per_diameter.back().value, 0.5 * m.size_scale.back().value};
+  EXPECT_EQ(*expected_force_error(m, fine, nullptr), *expected_force_error(m, finest(m), nullptr));
+}
+
+TEST(ExpectedError, ABadTableIsNamedWithItsLine) {
+  const fs::path dir = fs::path(ROCKCUT_TEST_TMP) / "expected_error";
+  fs::create_directories(dir);
+  const auto error_of = [&](const std::string& text) {
+    const fs::path csv = dir / "table.csv";
+    std::ofstream(csv) << text;
+    try {
+      read_error_model(csv);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string good = "dt_safety,0.4,0.1\ndt_safety,0.2,0\nfluid_step_ratio,1,0.5\n"
+                           "fluid_step_ratio,0.5,0\nh_per_diameter,3,0.1\nh_per_diameter,2,0\n"
+                           "size_scale,1,0.1\nsize_scale,0.5,0\n";
+  EXPECT_EQ(error_of("# comment\nladder,value,force_error\n" + good), "no error");
+  EXPECT_THAT(error_of("ladder,value,force_error\ndt_safety,0.4,x\n"),
+              HasSubstr("table.csv:2: force_error \"x\" is not a number"));
+  EXPECT_THAT(error_of("ladder,value,force_error\ndt_safty,0.4,0.1\n"),
+              HasSubstr("table.csv:2: unknown ladder \"dt_safty\""));
+  EXPECT_THAT(error_of("ladder,value,force_error\ndt_safety,0.2,0.1\ndt_safety,0.4,0\n"),
+              HasSubstr("table.csv:3: dt_safety: settings go from the coarsest"));
+  EXPECT_THAT(error_of("ladder,value\n"), HasSubstr("table.csv:1: the header must name"));
+  EXPECT_THAT(error_of("ladder,value,force_error\ndt_safety,0.4,0.1\n"),
+              HasSubstr("needs two settings or more"));
+  EXPECT_THAT(error_of(""), HasSubstr("the header must name"));
+  const fs::path missing = dir / "none.csv";
+  try {
+    read_error_model(missing);
+    ADD_FAILURE() << "read a missing file";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("none.csv:0: cannot read the accuracy study's table"));
+  }
+}
+
+TEST(ExpectedError, TheStartUpLineOfTheDefaultSceneAndWithoutTheTable) {
+  // The default scene at the study's default settings: dt_safety 0.2 of the DEM limit, N = 3 at
+  // 0.0705 of the stiffness limit per step, h / diameter 2.5, the study's disc size.
+  const auto loaded = rockcut::scene::load_scene(fs::path(ROCKCUT_SOURCE_DIR) / "cases" / "cutting" /
+                                                 "saturated_reduced.pbtxt");
+  TimePlan plan;
+  plan.dt_s = 1e-7;
+  plan.coupling_interval = 3;
+  const double dem_limit_s = 5e-7, stiffness_limit_s = 1e-7 / 0.0705;
+  const auto line = expected_error_line(loaded.scene, plan, dem_limit_s, stiffness_limit_s,
+                                        ROCKCUT_BIN_DIR);
+  ASSERT_TRUE(line.has_value());
+  const ErrorModel m = read_error_model(kTable);
+  const double e = *expected_force_error(m, {0.2, 3 * 0.0705, 2.5, 1.0}, nullptr);
+  EXPECT_THAT(*line, HasSubstr("expected error of the mean horizontal force about " +
+                               std::to_string(static_cast<int>(std::lround(100 * e))) + " %"));
+  // A program without the table beside it says so and goes on.
+  const fs::path lonely = fs::path(ROCKCUT_TEST_TMP) / "expected_error" / "no_table" / "bin";
+  fs::create_directories(lonely);
+  const auto without = expected_error_line(loaded.scene, plan, dem_limit_s, stiffness_limit_s, lonely);
+  ASSERT_TRUE(without.has_value());
+  EXPECT_THAT(*without, HasSubstr("accuracy   no estimate: "));
+  EXPECT_THAT(*without, HasSubstr("share/rockcut/expected_error.csv:0: cannot read"));
 }
 
 }  // namespace

@@ -41,11 +41,11 @@ class FluidShareModel(unittest.TestCase):
             self.assertAlmostEqual(c / (n + c), s)
 
     def test_the_model_against_the_measured_shares(self):
-        # bench/README.md: the fluid's share of the paper-scale stretch inproc at
-        # N = 3 (44.1 %) predicts the shares measured at N = 5, 7 and 10 (31.7, 25.3, 19.2 and
-        # 18.9 %). Tolerance 1.5 points: two calls at the same N differed by up to 1.9 points over
-        # ipc and 0.3 inproc in that series, so a model within 1.5 points is as good as a
-        # second measurement.
+        # bench/README.md: the fluid's share of the paper-scale stretch inproc at N = 3 (44.1 %)
+        # predicts the shares measured at N = 5, 7 and 10 (31.7, 25.3, 19.2 and 18.9 %).
+        # Tolerance 1.5 points: two calls at the same N differed by up to 1.9 points over ipc and
+        # 0.3 inproc in the same measurements, so a model within 1.5 points is as good as a second
+        # measurement.
         c = bench_coupled.fluid_cost_in_dem_steps(3, 0.441)
         for n, measured in [(5, 0.317), (7, 0.253), (10, 0.192), (10, 0.189)]:
             self.assertAlmostEqual(c / (n + c), measured, delta=0.015, msg="N = %d" % n)

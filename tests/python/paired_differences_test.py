@@ -3,7 +3,6 @@
 
   tests/python/paired_differences_test.py --coupler build/bin/coupler --tmp DIR
 """
-import csv
 import math
 import os
 import subprocess

@@ -5,7 +5,6 @@ scene (runs.effective_scene: the bases merged).
 
   tests/python/scene_fields_test.py --coupler build/bin/coupler --tmp DIR
 """
-import os
 import unittest
 
 import harness  # tests/python/harness.py: the command line
@@ -57,6 +56,32 @@ class ScalarFields(unittest.TestCase):
         self.assertAlmostEqual(float(sets["dem.bonds.shear_strength_n_per_m"]),
                                0.5 * rock["shear_strength_n_per_m"])
         self.assertAlmostEqual(float(sets["fluid.smoothing_length_m"]), 0.003)
+
+    def test_walls_of_the_effective_scene(self):
+        # What rockcut animate draws: the reduced cut's floor and side walls (as written in
+        # cases/cutting/dry_reduced.pbtxt), and the closed box of initial_overlaps.
+        walls = scene_text.scene_walls(
+            runs.effective_scene(runs.case("cutting", "saturated_reduced.pbtxt"), (), ARGS.coupler))
+        self.assertEqual([w["name"] for w in walls], ["floor", "right", "left"])
+        self.assertEqual(walls[0]["vertices"].tolist(), [[-0.05, 0.0], [0.15, 0.0]])
+        self.assertEqual(walls[2]["vertices"].tolist(), [[0.0, 0.0], [0.0, 0.015]])
+        self.assertFalse(walls[0]["closed"])
+        self.assertEqual(walls[1]["velocity_m_s"].tolist(), [0.0, 0.0])
+        box = scene_text.scene_walls('dem { walls { name: "box" closed: true velocity_m_s { y: -0.5 }'
+                                     ' vertex_m { x: 1 } vertex_m { x: 1 y: 2 } vertex_m { y: 2 } } }')
+        self.assertEqual(len(box), 1)
+        self.assertTrue(box[0]["closed"])
+        self.assertEqual(box[0]["vertices"].tolist(), [[1.0, 0.0], [1.0, 2.0], [0.0, 2.0]])
+        self.assertEqual(box[0]["velocity_m_s"].tolist(), [0.0, -0.5])
+
+    def test_runs_side_by_side_follow_the_dem_threads_of_the_effective_scene(self):
+        dry = runs.case("cutting", "dry.pbtxt")  # dem { threads: 2 }, its rock from a base
+        self.assertEqual(runs.dem_threads(dry, (), ARGS.coupler), 2)
+        self.assertEqual(runs.dem_threads(dry, ["dem.threads=3"], ARGS.coupler), 3)
+        self.assertEqual(runs.dem_threads(runs.case("cutting", "dry_reduced.pbtxt"), (),
+                                          ARGS.coupler), 1)  # the default
+        self.assertEqual(runs.default_jobs(dry, ["dem.threads=1"], ARGS.coupler),
+                         runs.cpu_count())
 
     def test_effective_scene_applies_overrides_and_refuses_a_bad_scene(self):
         text = runs.effective_scene(runs.case("cutting", "dry_reduced.pbtxt"), ["dem.threads=3"],

@@ -6,6 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <google/protobuf/text_format.h>
+
+#include <iterator>
+
 #include "scene/scene_loader.hpp"
 
 namespace {
@@ -207,6 +211,44 @@ TEST(SceneBase, EveryExtremeSceneIsItsBaseAndAFewLines) {
     EXPECT_LE(fields, 12) << entry.path();
   }
   EXPECT_GE(scenes, 10);
+}
+
+TEST(SceneBase, TheRockOfTheCuttingAndCalibrationScenesIsWrittenOnce) {
+  // The rock (bonds, contact, density, damping) is written only in cases/rock/; every cutting and
+  // calibration scene gets it from there, so that changing the rock edits one file (the coarse
+  // discs' strengths, scaled with their size, in default_rock_coarse.pbtxt).
+  const fs::path cases = fs::path(ROCKCUT_SOURCE_DIR) / "cases";
+  rockcut::Scene rock, coarse;
+  for (auto [file, scene] :
+       {std::pair{"default_rock.pbtxt", &rock}, {"default_rock_coarse.pbtxt", &coarse}}) {
+    std::ifstream in(cases / "rock" / file);
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(text, scene)) << file;
+  }
+  int scenes = 0;
+  for (const char* folder : {"cutting", "calibration"}) {
+    for (const auto& entry : fs::directory_iterator(cases / folder)) {
+      if (entry.path().extension() != ".pbtxt") continue;
+      ++scenes;
+      std::ifstream in(entry.path());
+      const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+      for (const char* field : {"bonds", "contact", "density_kg_m3", "local_damping"})
+        EXPECT_EQ(text.find(std::string("\n  ") + field), std::string::npos)
+            << entry.path() << " writes the rock's " << field << ": take it from cases/rock/";
+      const rockcut::Dem dem = load_scene(entry.path()).scene.dem();
+      const bool is_coarse = dem.specimen().radius_max_m() == coarse.dem().specimen().radius_max_m();
+      const rockcut::Dem& want = is_coarse ? coarse.dem() : rock.dem();
+      EXPECT_EQ(dem.bonds().tensile_strength_n_per_m(), want.bonds().tensile_strength_n_per_m())
+          << entry.path();
+      EXPECT_EQ(dem.bonds().normal_stiffness_pa(), rock.dem().bonds().normal_stiffness_pa())
+          << entry.path();
+      EXPECT_EQ(dem.contact().shear_stiffness_pa(), rock.dem().contact().shear_stiffness_pa())
+          << entry.path();
+      EXPECT_EQ(dem.density_kg_m3(), rock.dem().density_kg_m3()) << entry.path();
+      EXPECT_EQ(dem.local_damping(), rock.dem().local_damping()) << entry.path();
+    }
+  }
+  EXPECT_GE(scenes, 7);
 }
 
 }  // namespace

@@ -1,0 +1,109 @@
+#!/usr/bin/python3
+"""coupler/data/expected_error.csv, the table the coupler's start-up estimate reads, is the accuracy
+study's output: its errors are recomputed here from the study's committed runs
+(docs/accuracy/accuracy.csv: dt_safety, h, size and N = 14; docs/accuracy/interval_0000m.csv: the
+paired differences of N = 10 ... 2), and rockcut accuracy writes a table of the same form.
+
+  tests/python/expected_error_table_test.py --coupler build/bin/coupler --tmp DIR
+"""
+import collections
+import csv
+import json
+import os
+import shutil
+import unittest
+
+import harness  # tests/python/harness.py: the command line
+from rockcut import accuracy, runs
+from rockcut.stats import mean, paired_table
+
+TABLE = os.path.join(runs.REPO, "coupler", "data", "expected_error.csv")
+DOCS = os.path.join(runs.REPO, "docs", "accuracy")
+ARGS = None
+
+
+def read_table(path):
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+class TableIsTheStudys(unittest.TestCase):
+    def setUp(self):
+        self.rows = read_table(TABLE)
+
+    def errors(self, ladder):
+        return [(float(r["value"]), float(r["force_error"])) for r in self.rows
+                if r["ladder"] == ladder]
+
+    def test_ladders_from_the_accuracy_study(self):
+        by = collections.defaultdict(list)
+        for r in harness.read_csv(os.path.join(DOCS, "accuracy.csv")):
+            by[(r["ladder"], r["setting"])].append(float(r["force_horizontal_mean_n_per_m"]))
+        finest = {"dt_safety": "0.025", "N": "1", "h": "1.67", "size": "0.5"}
+
+        def error(ladder, setting):
+            ref = mean(by[(ladder, finest[ladder])])
+            return abs(mean(by[(ladder, setting)]) - ref) / abs(ref)
+
+        for ladder, model in (("dt_safety", "dt_safety"), ("h", "h_per_diameter"),
+                              ("size", "size_scale")):
+            table = self.errors(model)
+            settings = sorted({s for (l, s) in by if l == ladder}, key=float, reverse=True)
+            self.assertEqual([v for v, _ in table], [float(s) for s in settings], model)
+            for (value, e), setting in zip(table, settings):
+                self.assertAlmostEqual(e, error(ladder, setting), delta=5e-5, msg=(model, setting))
+        # The coarsest N (14) of the fluid-step ladder, placed at the limit itself (1).
+        self.assertEqual(self.errors("fluid_step_ratio")[0][0], 1.0)
+        self.assertAlmostEqual(self.errors("fluid_step_ratio")[0][1], error("N", "14"), delta=5e-5)
+
+    def test_coupling_interval_from_the_paired_study_over_sixteen_seeds(self):
+        rows = harness.read_csv(os.path.join(DOCS, "interval_0000m.csv"))
+        paired = {int(v): rel for v, _, _, _, _, _, rel, _ in
+                  paired_table(rows, "force_horizontal_mean_n_per_m")}
+        table = self.errors("fluid_step_ratio")[1:]
+        self.assertEqual(len(table), len(paired))
+        for (value, e), n in zip(table, sorted(paired, reverse=True)):
+            self.assertAlmostEqual(value, round(0.0705 * n, 4), delta=6e-4, msg=n)
+            self.assertAlmostEqual(e, abs(paired[n]), delta=5e-5, msg=n)
+
+
+class AccuracyWritesTheTable(unittest.TestCase):
+    def test_expected_error_csv_from_a_study_folder(self):
+        # A study folder with two seeds per setting, made up: Fh = 100 at every finest setting,
+        # 110 and 130 elsewhere (errors 0.1 and 0.3), and a start-up report giving dt / the
+        # stiffness limit = 0.05.
+        out = os.path.join(ARGS.tmp, "accuracy_table")
+        shutil.rmtree(out, ignore_errors=True)
+        seeds = [1, 2]
+        ladders = accuracy.ladders(None)
+        for ladder, settings in ladders.items():
+            for k, (label, _, _) in enumerate(settings):
+                fh = 100.0 if k == len(settings) - 1 else (110.0 if k % 2 else 130.0)
+                for seed in seeds:
+                    d = accuracy.run_dir(out, ladder, label, seed)
+                    os.makedirs(d, exist_ok=True)
+                    summary = {"status": "completed", "wall_time_s": 1.0, "coupling_interval": 1,
+                               "particles": 10, "breaks_tensile": 1, "breaks_shear": 1}
+                    for key in accuracy.KEYS:
+                        summary[key] = fh
+                    with open(os.path.join(d, "summary.json"), "w") as f:
+                        json.dump(summary, f)
+        with open(os.path.join(accuracy.run_dir(out, "N", "1", 1), "log.txt"), "w") as f:
+            f.write("limit  fluid_module pore_fluid_stiffness: dt <= 2e-06 s (lagged)\n"
+                    "chosen dt = 1e-07 s (binding: dem_module dem_springs x dt_safety 0.2)\n")
+        self.assertEqual(accuracy.main(["--plot-only", "--out", out, "--seeds", "1,2"]), 0)
+        rows = read_table(os.path.join(out, "expected_error.csv"))
+        n = [(float(r["value"]), float(r["force_error"])) for r in rows
+             if r["ladder"] == "fluid_step_ratio"]
+        # N = 14, 7, 3, 1; N = 3 is the default setting, whose runs every ladder shares (the last
+        # written above, size's second setting, has Fh = 110).
+        self.assertEqual(n, [(0.7, 0.3), (0.35, 0.1), (0.15, 0.1), (0.05, 0.0)])
+        dt = [(r["value"], float(r["force_error"])) for r in rows if r["ladder"] == "dt_safety"]
+        self.assertEqual(dt, [("0.4", 0.3), ("0.2", 0.1), ("0.1", 0.3), ("0.05", 0.1),
+                              ("0.025", 0.0)])
+        self.assertEqual({r["seeds"] for r in rows}, {"2"})
+
+
+if __name__ == "__main__":
+    ARGS, rest = harness.arguments()
+    harness.run(rest)

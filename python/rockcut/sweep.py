@@ -230,17 +230,22 @@ def earlier_run(d, cmd):
     return "resume" if has_checkpoint else None
 
 
+def clear_run(d):
+    """Removes what an earlier run left in folder `d`: it must not pass for this run's results."""
+    for stale in ("summary.json", "sweep_run.json", "run.h5", "run.xdmf", "log.txt",
+                  slurm.EXIT_CODE_FILE):
+        if os.path.exists(os.path.join(d, stale)):
+            os.remove(os.path.join(d, stale))
+    shutil.rmtree(os.path.join(d, "checkpoints"), ignore_errors=True)
+
+
 def start_run(args, name, value, seed):
     d = run_dir(args.out, name, value, seed)
     os.makedirs(d, exist_ok=True)
     cmd = runs.command(args.case, d, run_sets(args, name, value, seed), args.coupler)
     resume = earlier_run(d, cmd) == "resume"
     if not resume:
-        # Files of an earlier sweep in the same folder must not pass for this run's results.
-        for stale in ("summary.json", "sweep_run.json", "run.h5", "run.xdmf", "log.txt"):
-            if os.path.exists(os.path.join(d, stale)):
-                os.remove(os.path.join(d, stale))
-        shutil.rmtree(os.path.join(d, "checkpoints"), ignore_errors=True)
+        clear_run(d)
     log = open(os.path.join(d, "log.txt"), "a" if resume else "w")
     log.write("$ " + " ".join(cmd + (["--resume"] if resume else [])) + "\n")
     log.flush()
@@ -293,9 +298,13 @@ def submit_sweep(args, name, values, seeds):
         sets = run_sets(args, name, value, seed) + threads
         argv = [a for s in sets for a in ("--set", s)]
         tasks.append((os.path.relpath(d, args.out), argv))
+        cmd = runs.command(args.case, d, sets, args.coupler)
+        # A folder of another command starts afresh; one of this command is resumed or, when it
+        # completed, left alone by its task.
+        if earlier_run(d, cmd) is None and not slurm_run_of(d, cmd):
+            clear_run(d)
         with open(os.path.join(d, "sweep_run.json"), "w") as f:  # the command, no exit code yet
-            json.dump({"command": runs.command(args.case, d, sets, args.coupler),
-                       "scheduler": "slurm"}, f, indent=1)
+            json.dump({"command": cmd, "scheduler": "slurm"}, f, indent=1)
     script = slurm.write_job(args.out, args.coupler, args.case, tasks, args.time, cpus,
                              args.partition, args.account, args.sbatch_arg)
     print(f"sweep: {len(tasks)} runs of {args.case} as a Slurm job array: {script}")
@@ -310,6 +319,17 @@ def submit_sweep(args, name, values, seeds):
     print(f"sweep: submitted job {job}; follow it with: scripts/rockcut status {args.out}\n"
           f"       and collect what has finished with: scripts/rockcut collect {args.out}")
     return 0
+
+
+def slurm_run_of(d, cmd):
+    """True when folder `d` holds a run of `cmd` that a Slurm task started (its exit code, if any,
+    is in exit_code.txt rather than sweep_run.json)."""
+    try:
+        with open(os.path.join(d, "sweep_run.json")) as f:
+            record = json.load(f)
+    except (OSError, ValueError):
+        return False
+    return record.get("command") == cmd and record.get("scheduler") == "slurm"
 
 
 def scene_blocks(scene_text):

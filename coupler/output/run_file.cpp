@@ -109,6 +109,8 @@ RunFile::RunFile(const std::filesystem::path& out_dir, const std::string& scene_
     throw std::invalid_argument(m.ctx + ": 'scene' is reserved for the scene text attribute");
   }
   std::filesystem::create_directories(out_dir);
+  // A link planted where run.h5 goes is removed, not followed: the file is created anew.
+  if (std::filesystem::is_symlink(h5_path)) std::filesystem::remove(h5_path);
   h5::silence_auto_errors();
   if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) <= 0) h5::fail(m.ctx, "deflate filter not available");
 

@@ -3,11 +3,14 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <iostream>
 
 #include "run/energy_budget.hpp"
 #include "run/expected_error.hpp"
+#include "run/out_dir_lock.hpp"
 #include "run/signals.hpp"
 #include "run/verification.hpp"
 #include "wire/protocol.hpp"
@@ -99,10 +102,17 @@ int run_scene(const RunOptions& options_in) {
   RunOptions options = options_in;
   std::optional<Checkpoint> checkpoint;
   scene::LoadedScene loaded;
+  std::optional<OutDirLock> lock;
   try {
     if (!options.resume) loaded = scene::load_scene(options.scene_path, options.overrides);
+    if (options.out_dir.empty()) options.out_dir = fs::path("out") / loaded.path.stem();
+    try {
+      lock.emplace(options.out_dir);  // before anything in it is read or changed
+    } catch (const std::runtime_error& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return kExitBadInput;
+    }
     if (options.resume || options.resume_if_possible) {
-      if (options.out_dir.empty()) options.out_dir = fs::path("out") / loaded.path.stem();
       const fs::path dir = options.out_dir / "checkpoints";
       const std::vector<fs::path> files = list_checkpoints(dir);
       if (files.empty() && options.resume) {
@@ -191,9 +201,17 @@ fs::path RunSession::module_executable(const std::string& from_scene, const char
 void RunSession::start_modules() {
   context_.emplace(1);
   if (options_.transport == Transport::ipc) {
-    // A private directory (mkdtemp makes it 0700) keeps other users off the sockets.
-    std::string templ = (fs::temp_directory_path() / "rockcut-XXXXXX").string();
-    if (!mkdtemp(templ.data())) throw std::runtime_error("cannot create a private ipc directory");
+    // A private directory (mkdtemp makes it 0700) keeps other users off the sockets. A socket's
+    // path must fit sockaddr_un (108 bytes): a long TMPDIR gives way to /tmp.
+    constexpr std::size_t kMaxSocketPath = 100;
+    fs::path base = fs::temp_directory_path();
+    if ((base / "rockcut-XXXXXX" / "fluid.sock").string().size() > kMaxSocketPath) base = "/tmp";
+    std::string templ = (base / "rockcut-XXXXXX").string();
+    if (!mkdtemp(templ.data())) {
+      throw std::runtime_error("cannot create a private directory for the module sockets in " +
+                               base.string() + ": " + std::strerror(errno) +
+                               " (set TMPDIR to a writable directory)");
+    }
     ipc_dir_ = templ;
   }
   const auto timeout = std::chrono::milliseconds(
@@ -374,6 +392,11 @@ void RunSession::open_output() {
     field_order.insert(field_order.end(), fluid_frame_fields_.begin(), fluid_frame_fields_.end());
     run_file_ = RunFile::resume(options_.out_dir, extent, field_order, attributes);
   } else {
+    // A fresh run: what an earlier run left here must not pass for this one's (its summary, its
+    // checkpoints, which a resume would otherwise continue).
+    std::error_code ec;
+    fs::remove(options_.out_dir / "summary.json", ec);
+    fs::remove_all(options_.out_dir / "checkpoints", ec);
     run_file_ = std::make_unique<RunFile>(options_.out_dir, loaded_.effective_text(), attributes);
   }
   summary_.set("scene", loaded_.path.string());

@@ -285,7 +285,12 @@ def submit_sweep(args, name, values, seeds):
     job = slurm.job_id_of(args.out)
     if job and not args.dry_run and slurm.task_states(job):
         print(f"sweep: job {job} of {args.out} is still queued or running: not submitted again")
-        return 0
+        return collect_finished(args.out)
+    if job and not args.dry_run and all(
+            (read_summary(run_dir(args.out, name, v, s)) or {}).get("status") == "completed"
+            for s in (seeds or [None]) for v in values):
+        print(f"sweep: every run of job {job} has completed")
+        return collect_finished(args.out)
     cpus = args.cpus_per_task or runs.dem_threads(args.case, args.set, args.coupler)
     scene = runs.effective_scene(args.case, args.set, args.coupler)
     coupled = "fluid" in scene_blocks(scene)
@@ -319,6 +324,13 @@ def submit_sweep(args, name, values, seeds):
     print(f"sweep: submitted job {job}; follow it with: scripts/rockcut status {args.out}\n"
           f"       and collect what has finished with: scripts/rockcut collect {args.out}")
     return 0
+
+
+def collect_finished(out):
+    """rockcut collect DIR: the CSVs and figures of what has finished, naming what is missing."""
+    from . import collect as collect_verb
+    code = collect_verb.main([out])
+    return 0 if code in (0, 1) else code  # 1: nothing has finished yet, which is no error here
 
 
 def slurm_run_of(d, cmd):

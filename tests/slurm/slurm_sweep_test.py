@@ -6,9 +6,9 @@ locally, value for value (the wall-time columns aside).
 
   slurm_sweep_test.py --coupler PATH --tmp DIR      (ctest; exit 77 = skipped, with the reason)
 
-Timing: Slurm's time limits are whole minutes, so each task gets one minute and the warning 55 s
-before it; slurmctld checks time limits about every 30 s, so a task is warned 5-35 s after it
-starts, and a run of this cut (its fluid stepped with every DEM step, coupling.interval 1) takes
+Timing: Slurm's time limits are whole minutes, so each task gets one minute and the warning 25 s
+before it; slurmctld checks time limits every 30 s and warns a task that will be within its margin
+by the next check, so a task is warned 5-35 s after it starts, and a run of this cut (its fluid stepped with every DEM step, coupling.interval 1) takes
 30-45 s on one core of this 2-core machine.
 """
 import argparse
@@ -61,7 +61,7 @@ def main():
             sdir = os.path.join(tmp, "on_slurm")
             r = rockcut(["sweep"] + common + ["--scheduler", "slurm", "--time", "1",
                                               "--cpus-per-task", "1",
-                                              "--sbatch-arg=--signal=B:USR1@55", "--out", sdir],
+                                              "--sbatch-arg=--signal=B:USR1@25", "--out", sdir],
                         env)
             assert r.returncode == 0, "the submission failed"
             with open(os.path.join(sdir, "slurm_job_id")) as f:

@@ -1,0 +1,91 @@
+// What a run does to its output directory: one run at a time (a lock naming the other's pid), a
+// fresh run drops what an earlier one left (summary.json, checkpoints) so that nothing there passes
+// for its own, a link planted where run.h5 goes is not followed, and a long TMPDIR does not break
+// the module sockets.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "integration/h5_read.hpp"
+#include "integration/process_helpers.hpp"
+
+namespace rockcut::test {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+const std::string kScene = source("cases/cutting/dry_reduced.pbtxt");
+const std::vector<std::string> kShort = {"--set", "time.end_time_s=0.002"};
+
+TEST(OutDir, ASecondRunIntoTheSameDirectoryIsRefusedNamingTheFirst) {
+  const fs::path dir = fresh_dir("out_dir_lock");
+  const fs::path out = dir / "out";
+  std::vector<std::string> first = {bin("coupler"), "run", kScene, "--out", out.string(),
+                                    "--set", "time.end_time_s=0.01"};
+  const Spawned a = spawn(first, dir, "first");
+  KillOnExit guard{a.pid};
+  while (!fs::exists(out / "run.h5")) ASSERT_FALSE(wait_exit(a.pid, 5ms).has_value());
+  std::string err;
+  std::vector<std::string> second = {bin("coupler"), "run", kScene, "--out", out.string()};
+  second.insert(second.end(), kShort.begin(), kShort.end());
+  EXPECT_EQ(run(second, dir, "second", nullptr, &err), 2);
+  EXPECT_NE(err.find("is in use by another run (coupler pid " + std::to_string(a.pid) + ")"),
+            std::string::npos)
+      << err;
+  ASSERT_EQ(wait_exit(a.pid, 120s).value_or(-1), 0);
+  const H5Reader h5(out / "run.h5");  // the first run's output is whole
+  EXPECT_FALSE(h5.doubles("/timeseries/time_s").empty());
+  // Once it has ended, the directory is free again.
+  EXPECT_EQ(run(second, dir, "third", nullptr, &err), 0) << err;
+}
+
+TEST(OutDir, AFreshRunDropsTheSummaryAndCheckpointsOfAnEarlierOne) {
+  const fs::path dir = fresh_dir("out_dir_fresh");
+  const CouplerRun earlier = run_coupler(kScene, kShort, dir, 120000ms);
+  ASSERT_EQ(earlier.code, 0) << earlier.err;
+  ASSERT_TRUE(fs::exists(earlier.out / "summary.json"));
+  ASSERT_TRUE(fs::exists(earlier.out / "checkpoints"));
+  std::vector<std::string> argv = {bin("coupler"), "run", kScene, "--out", earlier.out.string(),
+                                   "--set", "time.end_time_s=0.05"};
+  const Spawned s = spawn(argv, dir, "fresh");
+  KillOnExit guard{s.pid};
+  // Killed early: what is left must not pair the earlier summary with the new run.h5.
+  while (fs::exists(earlier.out / "summary.json")) {
+    ASSERT_FALSE(wait_exit(s.pid, 5ms).has_value()) << "ended before it had started its output";
+  }
+  kill(s.pid, SIGKILL);
+  wait_exit(s.pid, 30s);
+  EXPECT_FALSE(fs::exists(earlier.out / "summary.json"));
+  EXPECT_FALSE(fs::exists(earlier.out / "checkpoints" / "checkpoint_000000011381.h5"));
+}
+
+TEST(OutDir, ALinkWhereRunH5GoesIsNotFollowed) {
+  const fs::path dir = fresh_dir("out_dir_link");
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  const fs::path victim = dir / "precious.txt";
+  std::ofstream(victim) << "keep me\n";
+  fs::create_symlink(victim, out / "run.h5");
+  const CouplerRun r = run_coupler(kScene, kShort, dir, 120000ms);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(victim), "keep me\n");
+  EXPECT_FALSE(fs::is_symlink(out / "run.h5"));
+}
+
+TEST(OutDir, ALongTmpdirStillRunsAndLeavesNothingBehind) {
+  const fs::path dir = fresh_dir("out_dir_tmpdir");
+  fs::path tmp = dir / std::string(90, 't');
+  fs::create_directories(tmp);
+  ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
+  const CouplerRun r = run_coupler(source("cases/cutting/saturated_reduced.pbtxt"), kShort, dir,
+                                   120000ms);
+  unsetenv("TMPDIR");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::is_empty(tmp));
+}
+
+}  // namespace
+}  // namespace rockcut::test

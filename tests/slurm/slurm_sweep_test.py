@@ -66,6 +66,15 @@ def main():
             assert r.returncode == 0, "the submission failed"
             with open(os.path.join(sdir, "slurm_job_id")) as f:
                 job = f.read().strip()
+            # The same sweep here, with the tasks' thread counts, meanwhile: the tasks leave the
+            # cores idle while they wait to be started again after a requeue.
+            ldir = os.path.join(tmp, "local")
+            local_env = dict(os.environ)
+            local_env["PYTHONPATH"] = os.path.join(ROOT, "python")
+            local = subprocess.Popen(
+                [ROCKCUT, "sweep"] + common + ["--set", "dem.threads=1", "--set",
+                                               "fluid.threads=1", "--jobs", "2", "--out", ldir],
+                env=local_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             deadline = time.time() + 600
             while time.time() < deadline:
                 q = subprocess.run(["squeue", "-h", "-r", "-j", job], env=env,
@@ -84,17 +93,13 @@ def main():
                        if "resume     from" in open(f, errors="replace").read()]
             print(f"{len(resumed)} of 4 runs were requeued at their time limit and resumed")
             assert resumed, "no task reached its time limit: nothing was checkpointed and resumed"
+            output, _ = local.communicate(timeout=600)
+            print("$ rockcut sweep ... --jobs 2 (locally)\n" + output)
+            assert local.returncode == 0, "the local sweep failed"
     except Unavailable as e:
         print(f"SKIPPED: {e}")
         return SKIPPED
 
-    # The same sweep here, with the tasks' thread counts.
-    ldir = os.path.join(tmp, "local")
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.path.join(ROOT, "python")
-    r = rockcut(["sweep"] + common + ["--set", "dem.threads=1", "--set", "fluid.threads=1",
-                                      "--jobs", "2", "--out", ldir], env)
-    assert r.returncode == 0, "the local sweep failed"
     slurm_rows, local_rows = read_csv(os.path.join(sdir, "sweep.csv")), \
         read_csv(os.path.join(ldir, "sweep.csv"))
     assert len(slurm_rows) == len(local_rows) == 4

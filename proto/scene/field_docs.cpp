@@ -199,7 +199,7 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
     {"rockcut.Tool.width_m",
      "Width of the tool across the cut: forces are reported per metre and on this width."},
     {"rockcut.Verification.analytical",
-     "`uniform_acceleration`: every disc follows x0 + v0 t + a t^2 / 2 with a = gravity - grad p / density (prescribed_gradient model, no contacts). `terzaghi`: 1D consolidation of a lattice column drained at the top and sealed on the other sides, loaded by dem.prescribed_motion (series solution with the load ramp). `gaussian_pulse`: 2D diffusion of fluid.initial_pulse in an unbounded medium. `undrained_step`: sealed specimen, dp = -alpha M d(eps_v) under dem.prescribed_motion. The fluid solutions compare the final pressure of every particle; their errors are relative to the largest analytical pressure change."},
+     "`uniform_acceleration`: every disc follows x0 + v0 t + a t^2 / 2 with a = gravity - grad p / density (prescribed_gradient model, no contacts). `terzaghi`: 1D consolidation of a lattice column drained at the top and sealed on the other sides, loaded by dem.prescribed_motion (series solution with the load ramp). `gaussian_pulse`: 2D diffusion of fluid.initial_pulse in an unbounded medium. `undrained_step`: sealed specimen, dp = -alpha M d(eps_v) under dem.prescribed_motion, held at fluid.cavitation_pressure_pa (eq. 22) when fluid.cavitation is on and the stretch goes past it. The fluid solutions compare the final pressure of every particle; their errors are relative to the largest analytical pressure change."},
     {"rockcut.Verification.tolerance_rel",
      "Largest relative error accepted; the run fails (exit 1) above it."},
     {"rockcut.Wall.closed",

@@ -128,6 +128,30 @@ TEST_P(FluidScene, UndrainedStepRaisesThePressureByAlphaMTimesTheStrain) {
   for (double p : f.p) EXPECT_NEAR(p, kPHydro + 0.5 * 2e9 * 1e-4, 1e5 * 2e-6);
 }
 
+TEST_P(FluidScene, UndrainedStretchPastCavitationHoldsTheVapourPressure) {
+  // The sealed specimen stretched by 2e-4 instead of compressed by 1e-4: unclamped the pressure
+  // would fall by alpha M 2e-4 = 200 kPa to -98.7 kPa; eq. 22 holds it at p_min = 2340 Pa, and the
+  // self-check compares with that clamped answer (error relative to p_min - p_hydro = -99 kPa).
+  // Measured: every particle at p_min exactly, error 0. Before the check knew the clamp it
+  // reported 0.505 and exited 1.
+  const CaseRun r = run_case("undrained_step", GetParam(),
+                             {"--set", "dem.prescribed_motion.strain_rate_xx_per_s=0.5", "--set",
+                              "dem.prescribed_motion.strain_rate_yy_per_s=0.5"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Summary s = Summary::read(r.out / "summary.json");
+  EXPECT_LT(number(s, "error_max_rel"), 1e-9);
+  const Final f = final_frame(r.out);
+  for (double p : f.p) EXPECT_EQ(p, 2340.0);
+  // Without the clamp the check is the linear formula, and the model follows it to the strain
+  // measurement's eps_dot dt = 2.5e-6 at this rate (twice the scene's rate).
+  const CaseRun u = run_case("undrained_step", GetParam(),
+                             {"--set", "dem.prescribed_motion.strain_rate_xx_per_s=0.5", "--set",
+                              "dem.prescribed_motion.strain_rate_yy_per_s=0.5", "--set",
+                              "fluid.cavitation=false"});
+  ASSERT_EQ(u.code, 0) << u.err;
+  EXPECT_LT(number(Summary::read(u.out / "summary.json"), "error_max_rel"), 4e-6);
+}
+
 INSTANTIATE_TEST_SUITE_P(Sp, FluidScene, testing::Values("explicit", "implicit"));
 
 TEST(FluidScenes, ExplicitStepAboveItsLimitIsRefusedAndTheImplicitModelTakesIt) {

@@ -30,7 +30,8 @@
 // (measured error 5 % at T_v = 0.2, 25 % at T_v = 1, against 0.8 % and 1.9 % with the cap) and
 // raised the explicit step's spectral radius by 1.7 (C_crit 0.032-0.08 instead of 0.063-0.093).
 // With the cap, surface and corner rows get at most the interior's correction, and the smallest
-// measured C_crit is 0.058 (tests/fluid/consistent_laplacian_test.cpp).
+// measured C_crit is 0.058 (tests/fluid/laplacian_stability_test.cpp), and the explicit model
+// keeps C = 0.05.
 #pragma once
 
 #include <span>

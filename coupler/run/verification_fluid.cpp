@@ -137,12 +137,16 @@ std::vector<double> gaussian_pulse(const rockcut::Scene& scene, const FinalState
   return exact;
 }
 
-// A sealed specimen compressed uniformly: no flow, so dp = -alpha M d(eps_v) everywhere (eq. 14
-// with a uniform pressure, whose Laplacian vanishes).
+// A sealed specimen compressed (or stretched) uniformly: no flow, so dp = -alpha M d(eps_v)
+// everywhere (eq. 14 with a uniform pressure, whose Laplacian vanishes). With fluid.cavitation the
+// pressure cannot fall below p_min (eq. 22): the load is one constant strain rate, so the pressure
+// moves one way, and a specimen stretched past cavitation holds max(p_hydro + dp, p_min).
 std::vector<double> undrained_step(const rockcut::Scene& scene, const FinalState& s) {
   const Pore pore = pore_of(scene);
   const double dp = -pore.alpha_m_pa * load_of(scene).strain_at(s.time_s);
-  return std::vector<double>(s.position.size() / 2, pore.p_hydro_pa + dp);
+  double p = pore.p_hydro_pa + dp;
+  if (scene.fluid().cavitation()) p = std::max(p, scene.fluid().cavitation_pressure_pa());
+  return std::vector<double>(s.position.size() / 2, p);
 }
 
 }  // namespace

@@ -28,9 +28,11 @@ class BondSet {
 
   /// Adds the bond forces at the current positions (and velocities, for the incremental shear) into
   /// `out` for bonds [begin, end). A bond whose strength is exceeded breaks now and carries no
-  /// force: it is flagged, and remove_broken() records it.
+  /// force: it is flagged, and remove_broken() records it. A pair that breaks while its discs
+  /// overlap gets, in this same evaluation, the normal force of the contact that replaces the bond,
+  /// contact_normal_n_m times the overlap (0 without contacts; see remove_broken).
   void compute(const Particles& p, double dt, std::size_t begin, std::size_t end, ForceView out,
-               bool& any_broken);
+               bool& any_broken, double contact_normal_n_m = 0.0);
   /// Removes the flagged bonds, appending their breaks (and the pairs, which may now collide) to
   /// the given lists, and the elastic energy they release to the ledger: the bond's energy less
   /// the normal energy of the contact spring a compressed pair starts with (contact_normal_n_m,

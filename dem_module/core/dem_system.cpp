@@ -182,7 +182,8 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
   const auto [p0, p1] = share(particles_.size(), t, threads);
   const ForceView out = buffers_.view(t, particles_, p0, p1);
   const auto [b0, b1] = share(bonds_.size(), t, threads);
-  bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken);
+  bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken,
+                 settings_.contact.normal_stiffness_n_m);
   if (settings_.contact.normal_stiffness_n_m > 0) {
     const auto [c0, c1] = share(contacts_.size(), t, threads);
     contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, sums.friction_j);

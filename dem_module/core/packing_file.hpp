@@ -1,8 +1,11 @@
 // A disc packing as a plain text file, so a specimen can be generated once (or elsewhere) and reused.
 //
-// Format: one disc per line, "x_m y_m radius_m" (SI metres, whitespace separated, any number format
-// std::from_chars accepts, e.g. 1.5e-3). Blank lines and everything after '#' are ignored.
-// write_packing_file writes 17 significant digits, so a write/read round trip is bit-exact.
+// Format: one disc per line, "x_m y_m radius_m [vx_m_s vy_m_s [omega_rad_s]]" (SI units,
+// whitespace separated, any number format std::from_chars accepts, e.g. 1.5e-3): 3, 5 or 6
+// numbers, the optional ones the disc's initial velocity and spin (0 where a line leaves them
+// out), so a two-disc collision or a projectile is a packing file. Blank lines and everything
+// after '#' are ignored. write_packing_file writes 17 significant digits (and the motion columns
+// only when the packing has them), so a write/read round trip is bit-exact.
 #pragma once
 
 #include <filesystem>
@@ -12,7 +15,8 @@
 namespace rockcut::dem {
 
 /// Throws std::runtime_error "<path>:<line>: <reason>" for an unreadable file, a malformed line
-/// (not exactly three numbers), a non-finite value or a non-positive radius.
+/// (not 3, 5 or 6 numbers), a non-finite value or a non-positive radius. The motion columns are
+/// filled (zeros where a line has none) when any line gives them, else left empty.
 Packing read_packing_file(const std::filesystem::path& path);
 
 /// The same discs renumbered in row-major cell order (rows of cells one largest diameter high in

@@ -39,7 +39,11 @@ struct PackingSpec {
 
 struct Packing {
   std::vector<double> x_m, y_m, radius_m;
+  /// Initial velocity [m/s] and spin [rad/s] per disc (a packing file's optional columns): empty,
+  /// or one value per disc.
+  std::vector<double> vx_m_s, vy_m_s, omega_rad_s;
   std::size_t size() const { return radius_m.size(); }
+  bool has_motion() const { return !vx_m_s.empty(); }
 };
 
 /// The largest overlap (negative surface gap) generate_packing(spec) can leave between two discs:

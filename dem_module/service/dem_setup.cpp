@@ -24,6 +24,11 @@ Particles from_packing(const Packing& packing, double density) {
   Particles p;
   for (std::size_t i = 0; i < packing.x_m.size(); ++i) {
     p.add(packing.x_m[i], packing.y_m[i], packing.radius_m[i], density);
+    if (packing.has_motion()) {
+      p.velocity[2 * i] = packing.vx_m_s[i];
+      p.velocity[2 * i + 1] = packing.vy_m_s[i];
+      p.angular_velocity[i] = packing.omega_rad_s[i];
+    }
   }
   return p;
 }
@@ -231,10 +236,11 @@ DemSetup build_dem(const rockcut::Scene& scene) {
   DemSetup setup;
   Particles particles = particles_from_scene(dem, setup.specimen_report);
   if (particles.size() == 0) throw std::invalid_argument("dem: the scene makes no particles");
+  // On top of each disc's own velocity (a packing file's columns; 0 otherwise).
   const double vx = dem.initial_velocity_m_s().x(), vy = dem.initial_velocity_m_s().y();
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    particles.velocity[2 * i] = vx;
-    particles.velocity[2 * i + 1] = vy;
+    particles.velocity[2 * i] += vx;
+    particles.velocity[2 * i + 1] += vy;
   }
 
   DemSettings settings;

@@ -98,6 +98,7 @@ void correction_matrices(const Rows& rows, std::span<const double> lucy_volume, 
       ny -= vl[j] * mf * dy;
     }
     g.div_r[i] = divr;
+    g.l_trace[i] = a + c;
     g.normal[2 * i] = nx;
     g.normal[2 * i + 1] = ny;
     // Eigenvalues of [[a, b], [b, c]]: lambda = m +- d.
@@ -176,6 +177,7 @@ void update_geometry(const NeighbourList& list, const WendlandC2& kernel,
   geo.volume_iterates.resize(volume_iterations * n);
   geo.l_inverse.resize(3 * n);
   geo.correction.resize(n);
+  geo.l_trace.resize(n);
   geo.div_r.resize(n);
   geo.normal.resize(2 * n);
   const AllRows all{static_cast<int>(n)};

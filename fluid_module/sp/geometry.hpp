@@ -46,6 +46,10 @@ struct Geometry {
   /// xx, xy, yy), or its safe replacement (see `correction`).
   std::vector<double> l_inverse;
   std::vector<Correction> correction;
+  /// tr L_i = sum_j V_j (-F_ij) r_ij^2 [1]: 2 for an exact second moment (continuum interior),
+  /// about 1 at a straight surface. The consistent Laplacian's renormalisation
+  /// (sp/consistent_laplacian.hpp).
+  std::vector<double> l_trace;
   std::vector<double> div_r;   ///< Lucy's uncorrected div r (eq. 24) [1]
   /// Lucy's uncorrected gradient of the constant 1 with the sign flipped, sum_j (m_j / rho_j)
   /// F_ij (x_j - x_i) [1/m], 2 per particle: 0 inside, the outward normal at a surface.

@@ -5,7 +5,7 @@
 namespace rockcut::fluid::sp {
 
 ImplicitModel::ImplicitModel(const SpParams& params)
-    : PorePressureModel(params), system_(params.solver_tolerance, params.solver_max_iterations) {}
+    : PorePressureModel(params), system_(params.solver_tolerance, params.solver_max_iterations, params.laplacian) {}
 
 StabilityLimit ImplicitModel::diffusion_limit() const {
   const double h = params_.h_m;

@@ -5,10 +5,19 @@
 #include <stdexcept>
 #include <string>
 
+#include "sp/consistent_laplacian.hpp"
+
 namespace rockcut::fluid::sp {
 
-ImplicitSystem::ImplicitSystem(double tolerance, unsigned max_iterations)
-    : tolerance_(tolerance), max_iterations_(max_iterations) {}
+ImplicitSystem::ImplicitSystem(double tolerance, unsigned max_iterations,
+                               LaplacianForm laplacian)
+    : tolerance_(tolerance), max_iterations_(max_iterations), laplacian_(laplacian) {}
+
+double ImplicitSystem::mass(const Geometry& geo, int i) const {
+  const double v = geo.volume[static_cast<std::size_t>(i)];
+  if (laplacian_ == LaplacianForm::paper) return v;
+  return v / consistent_laplacian_scale(geo.l_trace[static_cast<std::size_t>(i)]);
+}
 
 void ImplicitSystem::rebuild_pattern(const Geometry& geo) {
   const int n = static_cast<int>(geo.particles());
@@ -62,6 +71,7 @@ void ImplicitSystem::assemble(double dt_s, double d_m2_s, const Geometry& geo,
       b_[i] = v[i] * fixed_value_[i];
       continue;
     }
+    const double m = mass(geo, i);
     double sum_w = 0.0, flux = 0.0, moved = 0.0;
     for (int k = begin[i]; k < end[i]; ++k) {
       const int j = nb[k];
@@ -76,8 +86,8 @@ void ImplicitSystem::assemble(double dt_s, double d_m2_s, const Geometry& geo,
         a_ij = -c * w;
       }
     }
-    values[diagonal_[i]] = v[i] + c * sum_w;
-    b_[i] = dt_s * (v[i] * source[i] - d_m2_s * flux) + c * moved;
+    values[diagonal_[i]] = m + c * sum_w;
+    b_[i] = dt_s * (m * source[i] - d_m2_s * flux) + c * moved;
   }
 }
 
@@ -86,14 +96,15 @@ double ImplicitSystem::free_residual(int i, double dt_s, double d_m2_s, const Ge
                                      std::span<const double> p) const {
   const int* nb = geo.neighbours.data();
   const double* v = geo.volume.data();
-  double lhs = v[i] * d_[i], flux = 0.0;
+  const double m = mass(geo, i);
+  double lhs = m * d_[i], flux = 0.0;
   for (int k = geo.row_begin[i]; k < geo.row_end[i]; ++k) {
     const int j = nb[k];
     const double w = -2.0 * v[i] * v[j] * geo.f[k];
     lhs += dt_s * d_m2_s * w * (d_[i] - d_[j]);
     flux += w * (p[i] - p[j]);
   }
-  return dt_s * (v[i] * source[i] - d_m2_s * flux) - lhs;
+  return dt_s * (m * source[i] - d_m2_s * flux) - lhs;
 }
 
 ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const Geometry& geo,

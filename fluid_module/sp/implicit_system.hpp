@@ -9,6 +9,10 @@
 // stable. Solving for the increment (not the absolute pressure, which is ~1e5 Pa even when nothing
 // happens) makes the relative tolerance a tolerance on the change of the step.
 //
+// With the consistent Laplacian (sp/consistent_laplacian.hpp) V_i on the left becomes the
+// renormalised volume V~_i = V_i / s_i: the weights stay those of eq. 20, so the matrix stays
+// symmetric positive definite.
+//
 // Fixed particles (drained: p = p_hydro; cavitated: p = p_min) become identity rows and their
 // columns move to the right-hand side, which keeps the matrix symmetric.
 //
@@ -32,6 +36,7 @@
 
 #include "sp/boundary.hpp"
 #include "sp/geometry.hpp"
+#include "sp/params.hpp"
 
 namespace rockcut::fluid::sp {
 
@@ -43,7 +48,8 @@ struct ImplicitReport {
 
 class ImplicitSystem {
  public:
-  ImplicitSystem(double tolerance, unsigned max_iterations);
+  ImplicitSystem(double tolerance, unsigned max_iterations,
+                 LaplacianForm laplacian = LaplacianForm::paper);
 
   /// Advances `p` [Pa] by dt [s]: D [m^2/s], `source` [Pa/s] per particle. Throws
   /// std::runtime_error if the solver does not converge.
@@ -69,8 +75,12 @@ class ImplicitSystem {
   double free_residual(int i, double dt_s, double d_m2_s, const Geometry& geo,
                        std::span<const double> source, std::span<const double> p) const;
 
+  /// The mass of row i: V_i, or V~_i = V_i / s_i for the consistent Laplacian.
+  double mass(const Geometry& geo, int i) const;
+
   double tolerance_;
   unsigned max_iterations_;
+  LaplacianForm laplacian_;
   Eigen::SparseMatrix<double, Eigen::RowMajor, int> a_;
   std::vector<int> diagonal_;   // index of A_ii in the values
   std::vector<int> row_start_;  // value index of the geometry's pair k of row i: row_start_[i] + k

@@ -33,6 +33,7 @@ SpParams sp_params_from_scene(const rockcut::Scene& scene) {
   p.strain_from = f.strain_from() == "velocity_half" ? StrainFrom::velocity_half
                                                      : StrainFrom::displacement;
   p.force_form = f.force_form() == "gradient" ? ForceForm::gradient : ForceForm::adjoint;
+  p.laplacian = f.laplacian() == "consistent" ? LaplacianForm::consistent : LaplacianForm::paper;
   p.volume_iterations = f.volume_iterations();
   p.skin = f.neighbour_skin();
   p.geometry_refresh = f.geometry_refresh_distance();

@@ -14,6 +14,9 @@ namespace rockcut::fluid::sp {
 enum class StrainFrom { displacement, velocity_half };
 /// How the force on the grains is discretised (fluid.force_form).
 enum class ForceForm { adjoint, gradient };
+/// Which Laplacian diffuses the pressure (fluid.laplacian): eq. 20 as the paper writes it, or its
+/// renormalised form (sp/consistent_laplacian.hpp).
+enum class LaplacianForm { paper, consistent };
 
 struct SpParams {
   double h_m = 0.0015;                 ///< kernel support (smoothing length)
@@ -34,6 +37,7 @@ struct SpParams {
   double p_min_pa = 2340.0;            ///< eq. 22
   StrainFrom strain_from = StrainFrom::displacement;
   ForceForm force_form = ForceForm::adjoint;
+  LaplacianForm laplacian = LaplacianForm::consistent;
   unsigned volume_iterations = 3;
   double skin = 0.1;                   ///< neighbour skin, fraction of h
   /// Recompute the SP geometry only after a particle or wall has moved this far, fraction of h

@@ -23,7 +23,7 @@ void check_size(std::span<const double> a, std::size_t expected, const char* wha
 
 PorePressureModel::PorePressureModel(const SpParams& params)
     : params_(params), kernel_(params.h_m), diffusivity_m2_s_(params.diffusivity_m2_s()),
-      list_(params.h_m, params.skin) {}
+      list_(params.h_m, params.skin), step_op_(params.laplacian) {}
 
 std::vector<std::string> PorePressureModel::needs() const {
   std::vector<std::string> out = {

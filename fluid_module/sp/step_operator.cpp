@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "sp/consistent_laplacian.hpp"
 #include "sp/vec2.hpp"
 
 // Every loop is a per-particle gather over the symmetric rows, as in sp/operators.cpp: OpenMP
@@ -40,10 +41,13 @@ void StepOperator::build_rows(const Rows& rows, const Geometry& geo) {
   float* cl = c_lam_.data();
   float* t = t_.data();
   double* cs = c_sum_.data();
+  const bool consistent = laplacian_ == LaplacianForm::consistent;
 #pragma omp parallel for schedule(static)
   for (int r = 0; r < count; ++r) {
     const int i = rows[r];
     const double* mi = inv + 3 * i;
+    // 2 s_i: the row's Laplacian factor (s_i = 1 for eq. 20).
+    const double two_s = consistent ? 2.0 * consistent_laplacian_scale(geo.l_trace[i]) : 2.0;
     const double xi = x[2 * i], yi = x[2 * i + 1];
     double sx = 0.0, sy = 0.0;
     for (int k = begin[i]; k < end[i]; ++k) {
@@ -56,7 +60,7 @@ void StepOperator::build_rows(const Rows& rows, const Geometry& geo) {
       const float cy = opaque_float(s * (mi[1] * dx + mi[2] * dy));
       cl[3 * k] = cx;
       cl[3 * k + 1] = cy;
-      cl[3 * k + 2] = static_cast<float>(2.0 * v[j] * f[k]);
+      cl[3 * k + 2] = static_cast<float>(two_s * v[j] * f[k]);
       sx += cx;  // C_i of the stored floats, so that the force's transpose is exact
       sy += cy;
       // t = B_ji = -V_i F_ji L_j^{-1} (x_i - x_j). Row j computes its c for i with -V_i, the same

@@ -8,8 +8,10 @@
 //
 // Per pair (i, j) of row i, at the same index k as Geometry::neighbours:
 //   c_k   = B_ij = -V_j F_ij L_i^{-1} (x_j - x_i)   (eq. 17: div_i = sum_k c_k . (v_j - v_i))
-//   lam_k = 2 V_j F_ij                              (eq. 20: lap_i = sum_k lam_k (a_i - a_j))
+//   lam_k = 2 s_i V_j F_ij                          (eq. 20: lap_i = sum_k lam_k (a_i - a_j))
 //   t_k   = B_ji = V_i F_ij L_j^{-1} (x_j - x_i)    (adjoint: F_i = sum_k t_k g_j - g_i C_i)
+// with s_i = 1 for the paper's eq. 20 and s_i = 2 / tr L_i for the consistent Laplacian
+// (sp/consistent_laplacian.hpp: the same pass, so the choice costs the step nothing),
 // and per particle C_i = sum_k c_k, with g = A q the excess pressure times the area it acts on.
 // t_k has the bits of c at the mirror slot (row j, neighbour i), so the force is the exact
 // negative transpose of the divergence and the adjoint energy identity holds to the rounding of
@@ -28,11 +30,14 @@
 #include <vector>
 
 #include "sp/geometry.hpp"
+#include "sp/params.hpp"
 
 namespace rockcut::fluid::sp {
 
 class StepOperator {
  public:
+  explicit StepOperator(LaplacianForm laplacian = LaplacianForm::paper) : laplacian_(laplacian) {}
+
   /// Computes the coefficients for `geo`.
   void build(const Geometry& geo);
   /// After a local refresh of the geometry (refresh_geometry): recomputes the coefficients of
@@ -62,6 +67,7 @@ class StepOperator {
   void divergence_rows(const Geometry& geo, std::span<const double> vel, std::span<const double> a,
                        std::span<double> div, std::span<double> lap) const;
 
+  LaplacianForm laplacian_;    ///< which Laplacian lam_k holds (a setting, not state)
   std::vector<float> c_lam_;   ///< per pair: c_x, c_y, lam
   std::vector<float> t_;       ///< per pair: t_x, t_y
   std::vector<double> c_sum_;  ///< per particle: C_i = sum_k c_k (x, y), of the stored floats

@@ -8,6 +8,9 @@ Runs ladders of resolutions of the fluid verification scenes with both models th
 
   rockcut study [--out DIR] [--build DIR] [--cases terzaghi,gaussian_pulse,undrained_step]
                 [--quick] [--transport inproc]
+  rockcut study --time-ladder [--out DIR]   the error over the whole consolidation instead: Terzaghi
+                at T_v 0.1-1 and the Gaussian pulse at D t / sigma^2 0.125-0.75, both models, both
+                Laplacians (fluid.laplacian), OUT/fluid_time_ladder.{csv,md,png}
 
 Ladders (each for `explicit` and `implicit`):
   size   particle size: finer lattices (terzaghi) or finer random packings (gaussian_pulse: windows
@@ -188,6 +191,73 @@ def order(xs, ys):
     return float(np.polyfit(np.log(xs), np.log(ys), 1)[0])
 
 
+# The error over the whole consolidation (--time-ladder): Terzaghi at these T_v = D t / L^2 and the
+# Gaussian pulse at these D t / sigma^2 (0.5: the peak has halved), both models, both Laplacians,
+# at the scenes' own resolution and step.
+TV_LADDER = (0.1, 0.2, 0.3, 0.5, 0.7, 1.0)
+PULSE_LADDER = (0.125, 0.25, 0.5, 0.75)
+TERZAGHI_L = 32.5 * 0.0006  # the scene's drainage length (ny - 1/2) spacing [m]
+PULSE_SIGMA = 0.003         # the scene's pulse width [m]
+
+
+def time_ladder(a):
+    """Runs the time ladders and writes OUT/fluid_time_ladder.csv, .md and .png."""
+    work = os.path.join(a.out, "time_ladder")
+    os.makedirs(work, exist_ok=True)
+    rows = []
+    for case, ladder, length in (("terzaghi", TV_LADDER, TERZAGHI_L),
+                                 ("gaussian_pulse", PULSE_LADDER, PULSE_SIGMA)):
+        for model in MODELS:
+            for laplacian in ("paper", "consistent"):
+                for tv in ladder:
+                    end = tv * length ** 2 / D
+                    sets = {"fluid.model": f'"{model}"', "fluid.laplacian": f'"{laplacian}"',
+                            "time.end_time_s": repr(end)}
+                    out_dir = os.path.join(work, f"{case}_{model}_{laplacian}_{tv}")
+                    s = run(a.build, CASES[case], sets, out_dir, a.transport)
+                    rows.append({"case": case, "model": model, "laplacian": laplacian, "tv": tv,
+                                 "end_time_s": end, "error_max_rel": float(s["error_max_rel"]),
+                                 "error_l2_rel": float(s["error_l2_rel"]),
+                                 "tolerance_rel": float(s["error_tolerance_rel"]),
+                                 "wall_time_s": float(s["wall_time_s"])})
+                    r = rows[-1]
+                    print(f"{case:15s} {model:8s} {laplacian:10s} Dt/L^2={tv:<6g} max={r['error_max_rel']:.4f} "
+                          f"l2={r['error_l2_rel']:.4f} wall={r['wall_time_s']:.2f}s", flush=True)
+    with open(os.path.join(a.out, "fluid_time_ladder.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    lines = ["| case | model | laplacian | D t / L^2 | error_max_rel | error_l2_rel |",
+             "|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['case']} | {r['model']} | {r['laplacian']} | {r['tv']:g} | "
+                     f"{r['error_max_rel']:.4f} | {r['error_l2_rel']:.4f} |")
+    with open(os.path.join(a.out, "fluid_time_ladder.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    for ax, case, xlabel in ((axes[0], "terzaghi", "T_v = D t / L^2"),
+                             (axes[1], "gaussian_pulse", "D t / sigma^2")):
+        for model, colour in zip(MODELS, ("C0", "C1")):
+            for laplacian, style in (("paper", "--"), ("consistent", "-")):
+                pts = [r for r in rows if r["case"] == case and r["model"] == model
+                       and r["laplacian"] == laplacian]
+                ax.plot([r["tv"] for r in pts], [100 * r["error_max_rel"] for r in pts], style,
+                        marker="o", color=colour, label=f"{model}, {laplacian}")
+        tol = [r["tolerance_rel"] for r in rows if r["case"] == case][0]
+        ax.axhline(100 * tol, color="grey", linewidth=0.8, label="scene tolerance")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("error_max_rel [%]")
+        ax.set_title(case)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.out, "fluid_time_ladder.png"), dpi=110)
+    print(f"wrote {a.out}/fluid_time_ladder.csv, .md and .png")
+
+
 def main(argv):
     p = argparse.ArgumentParser(prog="rockcut study", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--out", default=os.path.join(ROOT, "out", "study"))
@@ -195,8 +265,12 @@ def main(argv):
     p.add_argument("--cases", default="terzaghi,gaussian_pulse,undrained_step")
     p.add_argument("--quick", action="store_true", help="shorter ladders (a few minutes)")
     p.add_argument("--transport", default="inproc")
+    p.add_argument("--time-ladder", action="store_true",
+                   help="instead: the error over the whole consolidation (T_v ladder), both Laplacians")
     a = p.parse_args(argv)
     os.makedirs(a.out, exist_ok=True)
+    if a.time_ladder:
+        return time_ladder(a)
     work = os.path.join(a.out, "runs")
     os.makedirs(work, exist_ok=True)
 

@@ -386,6 +386,29 @@ TEST(PackingFile, CommentsAndBlankLines) {
   EXPECT_EQ(p.radius_m[1], 1.0);
 }
 
+TEST(PackingFile, OptionalVelocityAndSpinColumns) {
+  // x y r [vx vy [omega]]: a line without them moves at 0; no line with them: no motion columns.
+  const auto path = tmp_file("motion.txt");
+  std::ofstream(path) << "0 0 1\n3 0 1 0.5 -0.25\n6 0 1 1 2 30\n";
+  const Packing p = read_packing_file(path);
+  ASSERT_TRUE(p.has_motion());
+  EXPECT_EQ(p.vx_m_s, (std::vector<double>{0.0, 0.5, 1.0}));
+  EXPECT_EQ(p.vy_m_s, (std::vector<double>{0.0, -0.25, 2.0}));
+  EXPECT_EQ(p.omega_rad_s, (std::vector<double>{0.0, 0.0, 30.0}));
+  // The columns follow their discs through the cell ordering and a write/read round trip.
+  const Packing sorted = in_cell_order(p);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    EXPECT_EQ(sorted.vx_m_s[i], sorted.x_m[i] / 6.0) << i;  // vx = x / 6 in this file
+  }
+  const auto copy = tmp_file("motion_copy.txt");
+  write_packing_file(copy, p);
+  const Packing q = read_packing_file(copy);
+  EXPECT_TRUE(bit_identical(p.vy_m_s, q.vy_m_s));
+  EXPECT_TRUE(bit_identical(p.omega_rad_s, q.omega_rad_s));
+  std::ofstream(path) << "0 0 1\n";
+  EXPECT_FALSE(read_packing_file(path).has_motion());
+}
+
 void expect_read_error(const std::string& text, const std::string& what) {
   const auto path = tmp_file("bad.txt");
   std::ofstream(path) << text;
@@ -398,8 +421,11 @@ void expect_read_error(const std::string& text, const std::string& what) {
 }
 
 TEST(PackingFile, MalformedLinesNameTheLine) {
-  expect_read_error("0 0 1\n0 0\n", "bad.txt:2: expected three numbers");
-  expect_read_error("0 0 1 4\n", ":1: more than three numbers");
+  expect_read_error("0 0 1\n0 0\n", "bad.txt:2: 2 numbers; expected 3 (x_m y_m radius_m)");
+  expect_read_error("0 0 1 4\n", ":1: 4 numbers; expected 3");
+  expect_read_error("0 0 1 1 2 3 4\n", ":1: more than six numbers");
+  expect_read_error("0 0 1\n0 0 1 inf 0\n", ":2: non-finite velocity");
+  expect_read_error("0 0 1 0 0 nan\n", ":1: non-finite omega_rad_s");
   expect_read_error("# c\n0 x 1\n", ":2: not a number");
   expect_read_error("0 0 -1\n", ":1: radius_m must be positive");
   expect_read_error("nan 0 1\n", ":1: non-finite position");

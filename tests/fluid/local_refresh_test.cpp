@@ -36,6 +36,7 @@ std::size_t differences(const sp::Geometry& a, const sp::Geometry& b) {
   compare(a.volume_iterates, b.volume_iterates);
   compare(a.l_inverse, b.l_inverse);
   compare(a.div_r, b.div_r);
+  compare(a.l_trace, b.l_trace);
   compare(a.normal, b.normal);
   for (std::size_t i = 0; i < a.particles(); ++i) {
     count += a.correction[i] != b.correction[i];

@@ -1,5 +1,8 @@
 #include "fluid/sp_test_support.hpp"
 
+#include "sp/consistent_laplacian.hpp"
+#include "sp/operators.hpp"
+
 #include <algorithm>
 #include <fstream>
 #include <limits>
@@ -90,6 +93,21 @@ void Driver::step(double dt_s, double exx, double eyy) {
   }
   t_ += dt_s;
   model_.step(dt_s, t_, {x_, v_, d_, {}}, force_);
+}
+
+void apply_laplacian(sp::LaplacianForm form, const sp::Geometry& geo, std::span<const double> a,
+                     std::span<double> lap) {
+  if (form == sp::LaplacianForm::consistent) {
+    sp::consistent_laplacian(geo, a, lap);
+  } else {
+    sp::laplacian(geo, a, lap);
+  }
+}
+
+double laplacian_weight(sp::LaplacianForm form, const sp::Geometry& geo, std::size_t i) {
+  return form == sp::LaplacianForm::paper
+             ? geo.volume[i]
+             : geo.volume[i] / sp::consistent_laplacian_scale(geo.l_trace[i]);
 }
 
 }  // namespace rockcut::fluid::test

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <span>
+
 #include "sp/explicit_model.hpp"
 #include "sp/implicit_model.hpp"
 
@@ -35,6 +37,13 @@ std::vector<double> distance_to_box(const Particles& p);
 /// Table 1 parameters with smoothing length h and the given sealed sides (left, right, bottom,
 /// top).
 sp::SpParams table1(double h_m, std::array<bool, 4> sealed = {false, false, false, false});
+
+/// The Laplacian of the given form: eq. 20 (sp/operators.hpp) or the consistent one
+/// (sp/consistent_laplacian.hpp).
+void apply_laplacian(sp::LaplacianForm form, const sp::Geometry& geo, std::span<const double> a,
+                     std::span<double> lap);
+/// The volume in which that Laplacian is symmetric (and conserved): V_i, or V_i / s_i.
+double laplacian_weight(sp::LaplacianForm form, const sp::Geometry& geo, std::size_t i);
 
 /// A model initialised on the particles: its geometry and neighbour lists are the operators' input.
 struct Initialised {

@@ -13,7 +13,7 @@
 // Why: eq. 20 applied to a quadratic gives 2 tr L_i / d times its Laplacian. In the continuum
 // tr L = d, but on a random packing at the paper's h (2.5 spacings) the discrete second moment
 // falls short by about 5 % (tr L = 1.9), and every diffusion on eq. 20 runs at about 0.95 D
-// (docs/fluid_verification.md).
+// (docs/verification.md).
 //
 // What it keeps: V~_i lap a_i = sum_j w_ij (a_j - a_i) with the symmetric weights of eq. 20,
 // w_ij = -2 V_i V_j F_ij >= 0, and the renormalised volume V~_i = V_i / s_i. So the operator

@@ -81,7 +81,7 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
     {"rockcut.Fluid.initial_pulse",
      "An initial Gaussian pressure pulse on top of p_hydro (the gaussian_pulse verification)."},
     {"rockcut.Fluid.laplacian",
-     "The Laplacian of the diffusion term of eq. 14. `paper`: eq. 20 (Brookshaw / Cleary & Monaghan with the SP volumes), which at h = 2.5 spacings diffuses as if D were about 0.95 D (Terzaghi: 7 % error at T_v = 0.5). `consistent`: eq. 20 renormalised by its second moment, d / tr L_i (capped at 1.1; Chen et al. 1999, fluid_module/sp/consistent_laplacian.hpp), exact for quadratic fields on a lattice; conservative and stable like eq. 20, at the same cost per step (Terzaghi within 1 % up to T_v = 0.5). docs/fluid_verification.md compares the two."},
+     "The Laplacian of the diffusion term of eq. 14. `paper`: eq. 20 (Brookshaw / Cleary & Monaghan with the SP volumes), which at h = 2.5 spacings diffuses as if D were about 0.95 D (Terzaghi: 7 % error at T_v = 0.5). `consistent`: eq. 20 renormalised by its second moment, d / tr L_i (capped at 1.1; Chen et al. 1999, fluid_module/sp/consistent_laplacian.hpp), exact for quadratic fields on a lattice; conservative and stable like eq. 20, at the same cost per step (Terzaghi within 1 % up to T_v = 0.5). docs/verification.md compares the two."},
     {"rockcut.Fluid.model",
      "The fluid model. Built in: `explicit` and `implicit` (the pore-pressure SP model of the paper, forward or backward Euler; parameters below) and `prescribed_gradient` (a uniform pressure gradient, force `-grad p * pi r^2` per disc of unit thickness)."},
     {"rockcut.Fluid.neighbour_skin",

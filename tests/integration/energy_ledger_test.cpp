@@ -9,6 +9,7 @@
 #include "integration/process_helpers.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
+#include "support/summary_parser.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -42,7 +43,7 @@ Crushed crush_lattice(const std::string& name, bool clamp) {
   const CouplerRun r = run_coupler(scene.string(), {}, dir, std::chrono::milliseconds(60000));
   EXPECT_EQ(r.code, 0) << r.err;
   Crushed c;
-  c.imbalance_rel = number(Summary::read(r.out / "summary.json"), "energy_imbalance_rel");
+  c.imbalance_rel = number(coupler::read_summary(r.out / "summary.json"), "energy_imbalance_rel");
   for (double mode : H5Reader(r.out / "run.h5").doubles("/breaks/mode")) {
     (mode == 0.0 ? c.tensile : c.shear) += 1;
   }

@@ -1,6 +1,8 @@
 // One run at a time in an output directory: an exclusive lock (flock) on OUT/.rockcut.lock, held
 // for the whole run and released by the kernel when the coupler ends in any way (also SIGKILL).
 // A second run started into the same directory is refused at once, naming the first one's pid.
+// The lock file goes at the end, and with it the directory if the run created it and wrote
+// nothing else (a refused scene leaves no trace).
 #pragma once
 
 #include <filesystem>
@@ -19,6 +21,8 @@ class OutDirLock {
 
  private:
   int fd_ = -1;
+  std::filesystem::path dir_, file_;
+  bool created_dir_ = false;
 };
 
 }  // namespace rockcut::coupler

@@ -37,6 +37,7 @@ def main():
     common = [CASE, "--vary", "water_depth_m=0,2000", "--seeds", "1,2", "--coupler", a.coupler,
               "--set", f"time.end_time_s={a.end_time}"]
     with tempfile.TemporaryDirectory(prefix="bench_campaign_") as tmp:
+        os.chmod(tmp, 0o755)  # munged runs as the munge user, who must reach its socket
         env = dict(os.environ)
         t0 = time.monotonic()
         subprocess.run([ROCKCUT, "sweep"] + common + ["--set", "dem.threads=1", "--set",

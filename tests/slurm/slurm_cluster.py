@@ -77,12 +77,14 @@ class SlurmCluster:
         os.chown(key, munge.pw_uid, munge.pw_gid)
         os.chmod(key, 0o400)
         self.munge_socket = os.path.join(munge_dir, "munge.sock")
-        subprocess.run(["runuser", "-u", "munge", "--", DAEMONS["munged"],
-                        "--socket=" + self.munge_socket, "--key-file=" + key,
-                        "--pid-file=" + os.path.join(munge_dir, "munged.pid"),
-                        "--log-file=" + os.path.join(munge_dir, "munged.log"),
-                        "--seed-file=" + os.path.join(munge_dir, "munged.seed")],
-                       check=True, capture_output=True)
+        r = subprocess.run(["runuser", "-u", "munge", "--", DAEMONS["munged"],
+                            "--socket=" + self.munge_socket, "--key-file=" + key,
+                            "--pid-file=" + os.path.join(munge_dir, "munged.pid"),
+                            "--log-file=" + os.path.join(munge_dir, "munged.log"),
+                            "--seed-file=" + os.path.join(munge_dir, "munged.seed")],
+                           capture_output=True, text=True)
+        if r.returncode != 0:  # e.g. a parent directory the munge user cannot enter
+            raise Unavailable("munged did not start: " + (r.stderr.strip() or r.stdout.strip()))
         self.pids["munged"] = self._read_pid(os.path.join(munge_dir, "munged.pid"))
 
         host = socket.gethostname()
@@ -108,7 +110,8 @@ ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
-SchedulerType=sched/backfill
+# Builtin (FIFO): a task starts as soon as a CPU frees, not at the next backfill pass (30 s).
+SchedulerType=sched/builtin
 MpiDefault=none
 ReturnToService=2
 JobRequeue=1

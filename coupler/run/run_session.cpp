@@ -10,6 +10,7 @@
 
 #include "run/energy_budget.hpp"
 #include "run/expected_error.hpp"
+#include "output/text_lines.hpp"
 #include "run/out_dir_lock.hpp"
 #include "run/signals.hpp"
 #include "run/verification.hpp"
@@ -375,18 +376,10 @@ void RunSession::open_output() {
     const auto counts = c.values("output_extent", 2);
     extent.timeseries_rows = static_cast<std::uint64_t>(counts[0]);
     extent.frames = static_cast<std::uint64_t>(counts[1]);
-    auto lines = [](const std::string& text) {
-      std::vector<std::string> out;
-      for (std::size_t start = 0, end; (end = text.find('\n', start)) != std::string::npos;
-           start = end + 1) {
-        out.push_back(text.substr(start, end - start));
-      }
-      return out;
-    };
-    extent.timeseries_columns = lines(c.text("timeseries_columns"));
-    for (const std::string& table : lines(c.text("tables"))) {
+    extent.timeseries_columns = split_lines(c.text("timeseries_columns"));
+    for (const std::string& table : split_lines(c.text("tables"))) {
       extent.table_rows[table] = c.scalar_as<std::uint64_t>("table_rows:" + table);
-      extent.table_columns[table] = lines(c.text("table_columns:" + table));
+      extent.table_columns[table] = split_lines(c.text("table_columns:" + table));
     }
     std::vector<std::string> field_order = dem_frame_fields_;
     field_order.insert(field_order.end(), fluid_frame_fields_.begin(), fluid_frame_fields_.end());

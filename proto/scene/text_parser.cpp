@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cctype>
 #include <deque>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -47,10 +46,15 @@ int display_column(const std::string& line, std::size_t index) {
   return column;
 }
 
+// The index of the character at display `column` (one pass: a long line costs O(length)).
 std::size_t char_index(const std::string& line, int column) {
-  std::size_t i = 0;
-  while (i < line.size() && display_column(line, i + 1) <= column) ++i;
-  return i;
+  int at = 0;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const int next = line[i] == '\t' ? at + 8 - at % 8 : at + 1;
+    if (next > column) return i;
+    at = next;
+  }
+  return line.size();
 }
 
 // Protobuf reports some errors at the token after the name they are about (the ':' after an unknown
@@ -101,26 +105,88 @@ std::vector<std::string> enum_value_names(const pb::Descriptor* root, const std:
   return names;
 }
 
+// Matches `text` against `pattern`, where each '*' stands for a quoted name ("..." without a
+// quote inside) that goes into `names`. Plain string scanning: no regular expression, whose
+// backtracking recursion a 50,000-character name would overflow.
+bool match_quoted(const std::string& text, const std::string& pattern, bool whole,
+                  std::vector<std::string>& names) {
+  names.clear();
+  std::size_t t = 0;
+  for (std::size_t p = 0; p < pattern.size(); ++p) {
+    if (pattern[p] != '*') {
+      if (t >= text.size() || text[t] != pattern[p]) return false;
+      ++t;
+      continue;
+    }
+    const std::size_t end = text.find('"', t);
+    if (end == std::string::npos || end == t) return false;
+    names.push_back(text.substr(t, end - t));
+    t = end;
+  }
+  return !whole || t == text.size();
+}
+
 // Adds a did-you-mean (or the valid names) to the messages about a misspelled name, and moves
 // every message about a named field to that name.
 std::string friendly(const pb::Descriptor* root, const std::vector<std::string>& lines, RawError& error) {
-  static const std::regex unknown_field(R"re(^Message type "([^"]+)" has no field named "([^"]+)"\.$)re");
-  static const std::regex unknown_enum(R"re(^Unknown enumeration value of "([^"]+)" for field "([^"]+)"\.$)re");
-  static const std::regex named_field(R"re(^(?:Non-repeated field|Field) "([^"]+)" is specified)re");
   // The hint replaces protobuf's final full stop.
   const std::string sentence = error.message.substr(0, error.message.size() - 1);
-  std::smatch m;
-  if (std::regex_match(error.message, m, unknown_field)) {
-    point_at_name(lines, m[2], error);
-    return sentence + name_hint(m[2].str(),
-                                field_names(root->file()->pool()->FindMessageTypeByName(m[1])));
-  }
-  if (std::regex_match(error.message, m, unknown_enum)) {
+  std::vector<std::string> m;
+  if (match_quoted(error.message, "Message type \"*\" has no field named \"*\".", true, m)) {
     point_at_name(lines, m[1], error);
-    return sentence + name_hint(m[1].str(), enum_value_names(root, m[2]));
+    return sentence +
+           name_hint(m[1], field_names(root->file()->pool()->FindMessageTypeByName(m[0])));
   }
-  if (std::regex_search(error.message, m, named_field)) point_at_name(lines, m[1], error);
+  if (match_quoted(error.message, "Unknown enumeration value of \"*\" for field \"*\".", true, m)) {
+    point_at_name(lines, m[0], error);
+    return sentence + name_hint(m[0], enum_value_names(root, m[1]));
+  }
+  if (match_quoted(error.message, "Non-repeated field \"*\" is specified", false, m) ||
+      match_quoted(error.message, "Field \"*\" is specified", false, m)) {
+    point_at_name(lines, m[0], error);
+  }
   return error.message;
+}
+
+// Protobuf's parser skips an unknown field's message by recursion, without the depth limit it keeps
+// for known ones: a scene nested deeper than this is refused before it is parsed.
+constexpr int kMaxNesting = 64;
+
+// The first place where `text` opens its (kMaxNesting + 1)-th nested block, outside strings and
+// comments, as a 0-based (line, column); (-1, -1) if it never does.
+std::pair<int, int> too_deep(const std::string& text) {
+  int depth = 0, line = 0, column = 0;
+  char quote = 0;
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      column = 0;
+      comment = false;
+      quote = 0;  // a string does not span lines in the text format
+      continue;
+    }
+    if (comment) {
+    } else if (quote) {
+      if (c == '\\') {
+        ++i;
+        ++column;
+      } else if (c == quote) {
+        quote = 0;
+      }
+    } else if (c == '#') {
+      comment = true;
+    } else if (c == '"' || c == '\'') {
+      quote = c;
+    } else if (c == '{' || c == '<') {
+      if (++depth > kMaxNesting) return {line, column};
+    } else if ((c == '}' || c == '>') && depth > 0) {
+      --depth;
+    }
+    ++column;
+  }
+  return {-1, -1};
 }
 
 std::vector<std::string> split_lines(const std::string& text) {
@@ -134,6 +200,14 @@ std::vector<std::string> split_lines(const std::string& text) {
 
 TextParse parse_text(const std::string& text, const std::string& name, pb::Message& message,
                      pb::TextFormat::ParseInfoTree& tree) {
+  if (const auto [line, column] = too_deep(text); line >= 0) {
+    TextParse refused;
+    refused.complete = false;
+    refused.errors.push_back({name, line + 1, column + 1,
+                              "blocks nested more than " + std::to_string(kMaxNesting) +
+                                  " deep; a scene needs a few levels"});
+    return refused;
+  }
   Collector collector;
   pb::TextFormat::Parser parser;
   parser.RecordErrorsTo(&collector);

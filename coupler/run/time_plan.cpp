@@ -118,7 +118,18 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
                          fmt(scene.coupling().interval_fraction()) + " of it, docs/accuracy.md)"
                                          : " (no fluid limit: the paper's N = 1)"));
   }
-  plan.total_steps = static_cast<std::uint64_t>(std::ceil(time.end_time_s() / plan.dt_s - 1e-9));
+  // A step count a double holds exactly, and one a run could finish: 2^53 steps would take years.
+  const double steps = std::ceil(time.end_time_s() / plan.dt_s - 1e-9);
+  constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
+  if (!(steps <= kMaxSteps)) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "time.end_time_s / dt = %.3g steps is more than any run can make (at most "
+                  "2^53); shorten the run or raise time.dt_s",
+                  steps);
+    throw PlanError(text);
+  }
+  plan.total_steps = static_cast<std::uint64_t>(steps);
   plan.report.push_back("steps: " + std::to_string(plan.total_steps) + " to t = " +
                         fmt(time.end_time_s()) + " s");
   return plan;

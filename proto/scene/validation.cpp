@@ -1,6 +1,7 @@
 #include "scene/validation.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <optional>
 
@@ -83,6 +84,7 @@ class Validator {
         report(opening, "missing required field \"" + field_path + "\"" +
                             unit_suffix(field.options()) + (doc.empty() ? "" : ": ") + std::string(doc));
       }
+      if (field.is_repeated() && count > 1) check_unique(message, field, field_path, map, opening);
       for (int k = 0; k < count; ++k) {
         const int index = field.is_repeated() ? k : -1;
         const std::string value_path =
@@ -102,6 +104,29 @@ class Validator {
   std::vector<Diagnostic> diagnostics;
 
  private:
+  // A list must not name a thing twice: two walls or pressure nodes of one name would write one
+  // time-series column, a frame field listed twice one dataset.
+  void check_unique(const pb::Message& message, const Field& field, const std::string& path,
+                    const SourceMap* map, const Location& opening) {
+    const pb::Reflection& r = *message.GetReflection();
+    const Field* name = field.message_type() ? field.message_type()->FindFieldByName("name") : nullptr;
+    if (field.cpp_type() == Field::CPPTYPE_MESSAGE && (!name || name->type() != Field::TYPE_STRING)) return;
+    if (field.cpp_type() != Field::CPPTYPE_MESSAGE && field.cpp_type() != Field::CPPTYPE_STRING) return;
+    std::vector<std::string> seen;
+    for (int k = 0; k < r.FieldSize(message, &field); ++k) {
+      const std::string value = field.cpp_type() == Field::CPPTYPE_MESSAGE
+                                    ? r.GetRepeatedMessage(message, &field, k).GetReflection()->GetString(
+                                          r.GetRepeatedMessage(message, &field, k), name)
+                                    : r.GetRepeatedString(message, &field, k);
+      if (std::find(seen.begin(), seen.end(), value) != seen.end()) {
+        report(where(message, field, k, map, opening),
+               path + "[" + std::to_string(k) + "]" + (name ? ".name" : "") + " = \"" + value +
+                   "\" is given twice; each must be different");
+      }
+      seen.push_back(value);
+    }
+  }
+
   void check_value(const pb::Message& message, const Field& field, int index, const std::string& path,
                    const Location& at) {
     const pb::FieldOptions& options = field.options();
@@ -111,6 +136,20 @@ class Validator {
       else if (!in_bounds(number->value, options))
         report(at, path + " = " + number->text + " is out of range: must be " + bounds_text(options) +
                        unit_suffix(options));
+    }
+    if (field.cpp_type() == Field::CPPTYPE_STRING && field.name() == "name") {
+      // Names become HDF5 datasets and time-series columns (wall_<name>_force_x_n_per_m).
+      const pb::Reflection& r = *message.GetReflection();
+      const std::string value = field.is_repeated() ? r.GetRepeatedString(message, &field, index)
+                                                    : r.GetString(message, &field);
+      const bool plain = !value.empty() && value.size() <= 64 &&
+                         std::all_of(value.begin(), value.end(), [](char c) {
+                           return std::isalnum(static_cast<unsigned char>(c)) || c == '_' ||
+                                  c == '-' || c == '.';
+                         }) && value != "." && value != "..";
+      if (!plain) {
+        report(at, path + " is not a plain name: use 1-64 letters, digits, '_', '-' or '.'");
+      }
     }
     if (field.cpp_type() == Field::CPPTYPE_STRING && options.HasExtension(rockcut::choices)) {
       const pb::Reflection& r = *message.GetReflection();

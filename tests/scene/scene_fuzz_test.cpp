@@ -109,5 +109,34 @@ TEST(SceneFuzz, RandomOverridesLoadOrAreRefused) {
   }
 }
 
+// What validated and then failed at run time: each is now refused with its place in the file.
+TEST(SceneRules, NamesAndListsAndTimeoutsAreCheckedBeforeTheRun) {
+  const fs::path base =
+      fs::path(ROCKCUT_SOURCE_DIR) / "cases" / "cutting" / "saturated_reduced.pbtxt";
+  const fs::path file = fs::path(ROCKCUT_TEST_TMP) / "scene_rules.pbtxt";
+  fs::create_directories(file.parent_path());
+  auto refused = [&](const std::string& extra, const std::vector<std::string>& sets = {}) {
+    std::ofstream(file) << "base: \"" << base.string() << "\"\n" << extra << "\n";
+    try {
+      load_scene(file, sets);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refused("output { frame_fields: [\"radius\", \"radius\"] }").find("is given twice"),
+            std::string::npos);
+  EXPECT_NE(refused("dem { walls { name: \"a/b\" vertex_m { x: 0 y: 0 } vertex_m { x: 1 y: 0 } } }")
+                .find("is not a plain name"),
+            std::string::npos);
+  // A list written in a scene replaces its base's: two walls of one name in the scene itself.
+  const std::string wall = "walls { name: \"floor\" vertex_m { x: 0 y: 0 } vertex_m { x: 1 y: 0 } }";
+  EXPECT_NE(refused("dem { " + wall + " " + wall + " }").find("dem.walls[1].name = \"floor\" is given twice"),
+            std::string::npos);
+  EXPECT_NE(refused("", {"coupling.timeout_s=0"}).find("out of range"), std::string::npos);
+  EXPECT_NE(refused("", {"coupling.timeout_s=1e300"}).find("out of range"), std::string::npos);
+  EXPECT_EQ(refused(""), "");
+}
+
 }  // namespace
 }  // namespace rockcut::scene

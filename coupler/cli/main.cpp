@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "output/h5_handle.hpp"
 #include "run/run_session.hpp"
 #include "scene/scene_loader.hpp"
 #include "wire/module_main.hpp"
@@ -49,11 +50,13 @@ int main(int argc, char** argv) {
   // variable before main, so the coupler's own teams (inproc) keep libgomp's default. An explicit
   // OMP_WAIT_POLICY or GOMP_SPINCOUNT in the environment still wins.
   setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
+  rockcut::coupler::h5::keep_library_out_of_exit();
   rockcut::wire::tune_allocator_for_bulk_frames();
   CLI::App app{"rockcut coupler: runs discrete-element rock cutting coupled to a pore-pressure "
                "model (Helmons, Miedema & van Rhee). Exit codes: 0 ok, 1 verification failed, "
                "2 bad scene or refused settings, 3 a module failed, 4 a runtime guard stopped the run "
-               "(NaN, runaway kinetic energy, excessive overlap), 128+N stopped by signal N."};
+               "(NaN, runaway kinetic energy, excessive overlap), 5 the output could not be written, 128+N "
+               "stopped by signal N."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("coupler ") + ROCKCUT_VERSION);
 

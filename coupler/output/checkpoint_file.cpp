@@ -180,7 +180,7 @@ std::uint64_t checkpoint_checksum(const Checkpoint& c) {
 fs::path write_checkpoint(const fs::path& dir, const Checkpoint& c) {
   fs::create_directories(dir);
   const fs::path final_path = dir / checkpoint_file_name(c.step);
-  const fs::path temp_path = dir / ("." + checkpoint_file_name(c.step) + ".tmp");
+  const fs::path temp_path = dir / (std::string(".") + checkpoint_file_name(c.step) + ".tmp");
   const std::string ctx = temp_path.string();
   h5::silence_auto_errors();
   try {

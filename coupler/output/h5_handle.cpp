@@ -6,6 +6,8 @@
 
 namespace rockcut::coupler::h5 {
 
+void keep_library_out_of_exit() { H5dont_atexit(); }
+
 void silence_auto_errors() {
   // Errors still land on the stack; take_error_stack() folds them into our exception text.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);

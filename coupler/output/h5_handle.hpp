@@ -11,6 +11,9 @@ namespace rockcut::coupler::h5 {
 
 /// Turns off HDF5's automatic printing of its error stack (we report errors ourselves).
 void silence_auto_errors();
+/// Call first, before any other HDF5 call: HDF5 then does not close files again at exit, which
+/// crashes in its library shutdown when a file could not be closed (a full disk, ulimit -f).
+void keep_library_out_of_exit();
 
 /// The innermost messages of the current HDF5 error stack ("" if empty); clears the stack.
 std::string take_error_stack();

@@ -1,11 +1,15 @@
 #include "run/run_session.hpp"
 
+#include <signal.h>
 #include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 
 #include "run/energy_budget.hpp"
@@ -39,6 +43,23 @@ const std::vector<std::string> kDefaultFrameFields = {"position", "velocity", "r
 }  // namespace
 
 namespace {
+
+// The private socket directories of couplers that were killed (SIGKILL leaves no chance to clean
+// up): this user's rockcut-XXXXXX directories in `base` whose coupler.pid names a process that is
+// gone.
+void remove_orphaned_ipc_directories(const fs::path& base) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(base, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("rockcut-", 0) != 0 || name.size() != 14 || !entry.is_directory(ec)) continue;
+    struct stat info {};
+    if (::lstat(entry.path().c_str(), &info) != 0 || info.st_uid != ::getuid()) continue;
+    std::ifstream pid_file(entry.path() / "coupler.pid");
+    long pid = 0;
+    if (!(pid_file >> pid) || pid <= 0) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
+  }
+}
 
 // A packing file named in the scene is relative to the scene file; the DEM gets it absolute.
 void make_paths_absolute(scene::LoadedScene& loaded) {
@@ -207,6 +228,7 @@ void RunSession::start_modules() {
     constexpr std::size_t kMaxSocketPath = 100;
     fs::path base = fs::temp_directory_path();
     if ((base / "rockcut-XXXXXX" / "fluid.sock").string().size() > kMaxSocketPath) base = "/tmp";
+    remove_orphaned_ipc_directories(base);
     std::string templ = (base / "rockcut-XXXXXX").string();
     if (!mkdtemp(templ.data())) {
       throw std::runtime_error("cannot create a private directory for the module sockets in " +
@@ -214,6 +236,8 @@ void RunSession::start_modules() {
                                " (set TMPDIR to a writable directory)");
     }
     ipc_dir_ = templ;
+    // Who owns it: a coupler killed by SIGKILL cannot remove it, the next run does.
+    std::ofstream(ipc_dir_ / "coupler.pid") << getpid() << "\n";
   }
   const auto timeout = std::chrono::milliseconds(
       static_cast<long long>(scene_.coupling().timeout_s() * 1000.0));
@@ -511,6 +535,11 @@ int RunSession::run() {
     std::fprintf(stderr, "\nstopped by signal %d at t = %.6g s (step %llu); output so far in %s\n",
                  sig, time_s_, static_cast<unsigned long long>(step_), options_.out_dir.c_str());
     return finish(128 + sig, "interrupted", "signal " + std::to_string(sig));
+  } catch (const std::exception& e) {
+    // Writing the output failed (a full disk, ulimit -f): the run stops, what was flushed stays.
+    std::fprintf(stderr, "\nerror: writing the output failed at t = %.6g s (step %llu): %s\n",
+                 time_s_, static_cast<unsigned long long>(step_), e.what());
+    return finish(kExitOutputFailed, "failed", std::string("writing the output: ") + e.what());
   }
   progress_->finish(time_s_, step_);
 
@@ -591,16 +620,27 @@ int RunSession::finish(int code, const std::string& status, const std::string& r
     summary_.set("fluid_busy_s", fluid_busy_.busy_s - fluid_busy_.busy0_s);
     summary_.set("fluid_after_reply_s", fluid_busy_.after_s - fluid_busy_.after0_s);
   }
+  // run.h5 and summary.json each on their own: a run.h5 that cannot be closed (a full disk)
+  // still gets its summary.json, which then says so.
   try {
     if (run_file_) {
       run_file_->set_attribute("status", reason.empty() ? status : status + ": " + reason);
       run_file_->set_attribute("wall_time_s", std::to_string(wall));
       run_file_->close();
     }
+  } catch (const std::exception& e) {
+    std::cerr << "error: closing " << (options_.out_dir / "run.h5").string() << ": " << e.what()
+              << "\n";
+    if (code == kExitOk) code = kExitOutputFailed;
+    summary_.set("status", std::string("failed"));
+    if (reason.empty()) summary_.set("error", std::string("closing run.h5: ") + e.what());
+  }
+  try {
     summary_.write(options_.out_dir / "summary.json");
   } catch (const std::exception& e) {
-    std::cerr << "error: closing the output in " << options_.out_dir << ": " << e.what() << "\n";
-    if (code == kExitOk) code = kExitBadInput;
+    std::cerr << "error: writing " << (options_.out_dir / "summary.json").string() << ": "
+              << e.what() << "\n";
+    if (code == kExitOk) code = kExitOutputFailed;
   }
   if (imbalance != scalars_.end()) {
     std::fprintf(stderr, "energy     imbalance %.3g of the energy throughput (given = kinetic + "

@@ -34,6 +34,7 @@ enum ExitCode : int {
   kExitBadInput = 2,
   kExitModuleFailed = 3,
   kExitUnstable = 4,  ///< a runtime guard stopped the run (NaN, runaway kinetic energy, overlap)
+  kExitOutputFailed = 5,  ///< the output could not be written (a full disk, a file-size limit)
 };
 
 /// A module reported a tripped runtime guard (wire GuardTrip): the run stops as failed.

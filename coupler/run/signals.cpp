@@ -28,6 +28,9 @@ void install_stop_signal_handlers() {
   checkpoint.sa_handler = on_checkpoint_signal;
   sigemptyset(&checkpoint.sa_mask);
   sigaction(SIGUSR1, &checkpoint, nullptr);
+  // Past a file-size limit (ulimit -f) a write fails with EFBIG and the run stops with a message
+  // and exit code 5, instead of the process being killed by SIGXFSZ.
+  signal(SIGXFSZ, SIG_IGN);
 }
 
 int stop_signal() { return g_stop_signal; }

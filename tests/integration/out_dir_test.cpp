@@ -87,5 +87,46 @@ TEST(OutDir, ALongTmpdirStillRunsAndLeavesNothingBehind) {
   EXPECT_TRUE(fs::is_empty(tmp));
 }
 
+// Past a file-size limit (as on a full disk) the run stops with one line naming the file and the
+// cause, exit code 5 and a summary.json that says failed; never a signal.
+TEST(OutDir, AFileSizeLimitStopsTheRunWithExitCode5AndASummary) {
+  const fs::path dir = fresh_dir("out_dir_full");
+  const fs::path out = dir / "out";
+  std::string err;
+  const int code = run({"/bin/sh", "-c",
+                        "ulimit -f 300; exec " + bin("coupler") + " run " + kScene + " --out " +
+                            out.string() + " --set time.end_time_s=0.01"},
+                       dir, "full", nullptr, &err);
+  EXPECT_EQ(code, 5) << err;
+  EXPECT_NE(err.find("File too large"), std::string::npos) << err;
+  const std::string summary = read_file(out / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;
+}
+
+// A coupler killed by SIGKILL cannot remove its private socket directory: the next run does.
+TEST(OutDir, TheSocketDirectoryOfAKilledCouplerIsRemovedByTheNextRun) {
+  const fs::path dir = fresh_dir("out_dir_orphan");
+  // A short TMPDIR of its own (a long one gives way to /tmp, where other runs are).
+  std::string templ = "/tmp/rcXXXXXX";
+  ASSERT_NE(mkdtemp(templ.data()), nullptr);
+  const fs::path tmp = templ;
+  ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
+  std::vector<std::string> argv = {bin("coupler"), "run", kScene, "--out", (dir / "killed").string(),
+                                   "--set", "time.end_time_s=0.05"};
+  const Spawned s = spawn(argv, dir, "killed");
+  {
+    KillOnExit guard{s.pid};
+    while (!fs::exists(dir / "killed" / "run.h5")) ASSERT_FALSE(wait_exit(s.pid, 5ms).has_value());
+    kill(s.pid, SIGKILL);
+    wait_exit(s.pid, 30s);
+  }
+  EXPECT_FALSE(fs::is_empty(tmp)) << "the killed coupler's directory";
+  const CouplerRun next = run_coupler(kScene, kShort, dir, 120000ms);
+  unsetenv("TMPDIR");
+  EXPECT_EQ(next.code, 0) << next.err;
+  EXPECT_TRUE(fs::is_empty(tmp));
+  fs::remove_all(tmp);
+}
+
 }  // namespace
 }  // namespace rockcut::test

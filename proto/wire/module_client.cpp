@@ -13,12 +13,17 @@ constexpr std::chrono::milliseconds kPollSlice{50};
 
 ModuleClient::ModuleClient(zmq::context_t& context, std::string module_name,
                            const std::string& endpoint, std::chrono::milliseconds timeout,
-                           ClientHooks hooks)
+                           ClientHooks hooks, const std::optional<CurveClientKeys>& curve)
     : name_(std::move(module_name)),
       socket_(context, zmq::socket_type::req),
       timeout_(timeout),
       hooks_(std::move(hooks)) {
   socket_.set(zmq::sockopt::linger, 0);
+  if (curve) {
+    socket_.set(zmq::sockopt::curve_serverkey, curve->server_key);
+    socket_.set(zmq::sockopt::curve_publickey, curve->public_key);
+    socket_.set(zmq::sockopt::curve_secretkey, curve->secret_key);
+  }
   socket_.connect(endpoint);
 }
 

@@ -107,7 +107,14 @@ wire::HelloReply ModuleLink::handshake() {
   hello->set_protocol_version(wire::kProtocolVersion);
   hello->set_expected_kind(spec_.kind);
   hello->set_coupler_version(ROCKCUT_VERSION);
-  this->request(request, reply);
+  try {
+    this->request(request, reply);
+  } catch (const wire::ModuleFailure& e) {
+    // A module that refuses the handshake (another protocol version or kind) is the wrong
+    // module, not a refused scene.
+    if (!e.refused()) throw;
+    throw wire::ModuleFailure(label_, reply.envelope.error().message());
+  }
   if (!reply.envelope.has_hello_reply()) {
     throw wire::ModuleFailure(label_, "did not answer the handshake with HelloReply");
   }

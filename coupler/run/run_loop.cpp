@@ -109,7 +109,8 @@ void RunSession::exchange(unsigned steps, bool initial) {
   }
   const wire::Kinematics& kinematics = reply_.envelope.kinematics();
   const double t = kinematics.time_s();
-  check_progress(dem_.link->label(), kinematics.step(), t, step_, time_s_, steps, false);
+  const std::uint64_t kinematics_step = kinematics.step();  // reply_ is reused below
+  check_progress(dem_.link->label(), kinematics_step, t, step_, time_s_, steps, false);
   dem_busy_.read(reply_.envelope);
 
   // 2. Fluid: advance the pressure by N dt (nothing at t = 0) and return the forces. The DEM
@@ -162,7 +163,7 @@ void RunSession::exchange(unsigned steps, bool initial) {
     throw wire::ModuleFailure(dem_.link->label(), "answered ApplyForces without StepReport");
   }
   check_progress(dem_.link->label(), reply_.envelope.step_report().step(),
-                 reply_.envelope.step_report().time_s(), kinematics.step(), t, 0, false);
+                 reply_.envelope.step_report().time_s(), kinematics_step, t, 0, false);
   dem_busy_.read(reply_.envelope);
   scalars_.clear();
   for (const auto& [name, value] : fluid_reply_.envelope.fluid_result().scalars()) {

@@ -71,16 +71,18 @@ rockcut::Scene with_allowed_packing_file(const wire::Init& init) {
   const fs::path allowed = fs::canonical(dir, ec);
   if (ec) throw std::invalid_argument("dem.packing_file: the scene directory cannot be opened");
   const fs::path named(scene.dem().packing_file().path());
-  const fs::path file = fs::canonical(named.is_relative() ? allowed / named : named, ec);
-  if (ec) {
-    throw std::invalid_argument("dem.packing_file \"" + named.string() +
-                                "\": cannot open packing file");
-  }
+  // Where it leads (symbolic links followed) is checked before whether it exists: the module
+  // tells nothing about files outside the directory.
+  const fs::path file = fs::weakly_canonical(named.is_relative() ? allowed / named : named, ec);
   const auto [end, _] = std::mismatch(allowed.begin(), allowed.end(), file.begin(), file.end());
-  if (end != allowed.end()) {
+  if (ec || end != allowed.end()) {
     throw std::invalid_argument("dem.packing_file \"" + named.string() +
                                 "\": outside the scene's directory " + allowed.string() +
                                 " (a module reads files only there and below)");
+  }
+  if (!fs::exists(file, ec)) {
+    throw std::invalid_argument("dem.packing_file \"" + named.string() +
+                                "\": cannot open packing file");
   }
   if (!fs::is_regular_file(file, ec)) {
     throw std::invalid_argument("dem.packing_file \"" + named.string() + "\": not a regular file");

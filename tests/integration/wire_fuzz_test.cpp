@@ -56,7 +56,7 @@ struct Module {
     std::vector<std::string> argv = {bin(exe), "--bind", endpoint};
     argv.insert(argv.end(), extra.begin(), extra.end());
     process = spawn(argv, dir, tag);
-    guard = std::make_unique<KillOnExit>(KillOnExit{process.pid});
+    guard.reset(new KillOnExit{process.pid});  // no temporary: its destructor would kill
   }
   bool alive() const { return !wait_exit(process.pid, 0ms).has_value(); }
 };
@@ -376,13 +376,17 @@ TEST(WireFuzz, BadInitsAreRefusedWithAClearError) {
          s.mutable_dem()->mutable_packing_file()->set_path("/dev/zero");
        }},
       {"packing_escape", "outside the scene's directory", [&](rockcut::Scene& s) {
-         s.mutable_dem()->mutable_packing_file()->set_path("../bad_init_outside/secret.txt");
+         s.mutable_dem()->mutable_packing_file()->set_path(
+             "../" + outside.parent_path().filename().string() + "/secret.txt");
        }},
       {"packing_etc", "outside the scene's directory", [](rockcut::Scene& s) {
          s.mutable_dem()->mutable_packing_file()->set_path("../../../../../../../../etc/hostname");
        }},
       {"packing_not_a_number", ":1: not a number", [](rockcut::Scene& s) {
          s.mutable_dem()->mutable_packing_file()->set_path("bad.txt");
+       }},
+      {"packing_missing_outside", "outside the scene's directory", [](rockcut::Scene& s) {
+         s.mutable_dem()->mutable_packing_file()->set_path("/nonexistent/file.txt");
        }},
   };
   for (const Case& c : cases) {
@@ -438,7 +442,7 @@ TEST(WireFuzz, CurveAcceptsOnlyTheCouplersKey) {
   EXPECT_EQ(fs::status(keys).permissions() & fs::perms::all, fs::perms::owner_all);
   const fs::path other = fresh_dir("curve_other") / "keys";
   wire::make_curve_keys(other, {"coupler"});
-  Module dem("dem_module", "curve", {"--curve-keys", keys.string()});
+  Module dem("dem_module", "curve_module", {"--curve-keys", keys.string()});
   const std::string server_key = wire::read_public_key(keys, "dem_module");
   const wire::CurveKeyPair right = wire::read_key_pair(keys, "coupler");
   const wire::CurveKeyPair wrong = wire::read_key_pair(other, "coupler");

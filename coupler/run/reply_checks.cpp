@@ -1,6 +1,7 @@
 #include "run/reply_checks.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "scene/particle_budget.hpp"
 
@@ -37,8 +38,9 @@ void check_progress(const std::string& module, std::uint64_t reply_step, double 
                                           std::to_string(step));
   }
   if (!std::isfinite(reply_time_s) || reply_time_s < time_s) {
-    throw wire::ModuleFailure(module, "reported the time " + std::to_string(reply_time_s) +
-                                          " s after " + std::to_string(time_s) + " s");
+    char text[96];
+    std::snprintf(text, sizeof text, "reported the time %.9g s after %.9g s", reply_time_s, time_s);
+    throw wire::ModuleFailure(module, text);
   }
 }
 

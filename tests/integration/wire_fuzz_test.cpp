@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 
@@ -53,7 +54,10 @@ struct Module {
   Module(const std::string& exe, const std::string& tag, std::vector<std::string> extra = {}) {
     dir = fresh_dir(tag);
     endpoint = "tcp://127.0.0.1:" + std::to_string(free_tcp_port());
-    std::vector<std::string> argv = {bin(exe), "--bind", endpoint};
+    // ROCKCUT_TEST_MODULE_DIR: fuzz the modules of another build (e.g. ROCKCUT_SANITIZE's).
+    const char* other = std::getenv("ROCKCUT_TEST_MODULE_DIR");
+    std::vector<std::string> argv = {other ? std::string(other) + "/" + exe : bin(exe), "--bind",
+                                     endpoint};
     argv.insert(argv.end(), extra.begin(), extra.end());
     process = spawn(argv, dir, tag);
     guard.reset(new KillOnExit{process.pid});  // no temporary: its destructor would kill

@@ -21,7 +21,10 @@ void check_init_reply(const std::string& module, const wire::InitReply& reply,
                                           std::to_string(*expected_particles));
   }
   for (const wire::StabilityLimit& l : reply.limits()) {
-    if (!std::isfinite(l.dt_max_s()) || !(l.dt_max_s() > 0.0)) {
+    // A limit only on a lagged coupling may be 0: N = 1 is then the only choice (an undamped DEM).
+    const bool ok = std::isfinite(l.dt_max_s()) &&
+                    (l.lag_only() ? l.dt_max_s() >= 0.0 : l.dt_max_s() > 0.0);
+    if (!ok) {
       throw wire::ModuleFailure(module, "stability limit \"" + l.name().substr(0, 64) +
                                             "\" is not a finite positive time step");
     }

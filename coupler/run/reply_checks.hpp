@@ -14,7 +14,7 @@
 namespace rockcut::coupler {
 
 /// InitReply: a particle count in 1..scene::kMaxParticles (equal to `expected_particles` if
-/// given) and stability limits that are finite and positive.
+/// given) and stability limits that are finite and positive (or 0 for a lag-only limit).
 void check_init_reply(const std::string& module, const wire::InitReply& reply,
                       std::optional<std::uint64_t> expected_particles);
 

@@ -120,8 +120,6 @@ std::size_t Message::shared_payload_bytes() const {
   return bytes;
 }
 
-namespace {
-// Sends one part, resuming after a signal handler ran (EINTR).
 void send_part(zmq::socket_t& socket, zmq::message_t& part, zmq::send_flags flags) {
   for (;;) {
     try {
@@ -132,7 +130,6 @@ void send_part(zmq::socket_t& socket, zmq::message_t& part, zmq::send_flags flag
     }
   }
 }
-}  // namespace
 
 void Message::send(zmq::socket_t& socket) {
   const std::string head_bytes = envelope.SerializeAsString();
@@ -146,8 +143,6 @@ void Message::send(zmq::socket_t& socket) {
   frames_.clear();  // sent frames are moved out by ZeroMQ
 }
 
-namespace {
-// Blocking receive that resumes after a signal handler ran (EINTR).
 void receive_part(zmq::socket_t& socket, zmq::message_t& part) {
   for (;;) {
     try {
@@ -157,7 +152,6 @@ void receive_part(zmq::socket_t& socket, zmq::message_t& part) {
     }
   }
 }
-}  // namespace
 
 void Message::receive(zmq::socket_t& socket) {
   clear();

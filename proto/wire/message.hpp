@@ -27,6 +27,11 @@ class ProtocolError : public std::runtime_error {
 
 class SharedPayloadArena;
 
+/// One part of a multipart message, sent or received (blocking), resuming after a signal
+/// handler ran (EINTR). Throws zmq::error_t on other errors.
+void send_part(zmq::socket_t& socket, zmq::message_t& part, zmq::send_flags flags);
+void receive_part(zmq::socket_t& socket, zmq::message_t& part);
+
 class Message {
  public:
   Envelope envelope;

@@ -23,28 +23,6 @@ void fill_hello_reply(const ModuleHandler& handler, unsigned version, HelloReply
   for (const std::string& m : handler.models()) reply.add_models(m);
 }
 
-// Blocking receive that resumes after a signal handler ran (EINTR).
-void receive_part(zmq::socket_t& socket, zmq::message_t& part) {
-  for (;;) {
-    try {
-      if (socket.recv(part, zmq::recv_flags::none)) return;
-    } catch (const zmq::error_t& e) {
-      if (e.num() != EINTR) throw;
-    }
-  }
-}
-
-void send_part(zmq::socket_t& socket, zmq::message_t& part) {
-  for (;;) {
-    try {
-      socket.send(part, zmq::send_flags::sndmore);
-      return;
-    } catch (const zmq::error_t& e) {
-      if (e.num() != EINTR) throw;
-    }
-  }
-}
-
 // Drops the rest of a multipart message.
 void drain(zmq::socket_t& socket, bool more) {
   while (more) {
@@ -231,9 +209,9 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
     busy_s += std::chrono::duration<double>(clock::now() - start).count();
     reply.envelope.set_busy_s(busy_s);
     reply.envelope.set_after_reply_s(after_s);
-    send_part(socket, peer_id);
+    send_part(socket, peer_id, zmq::send_flags::sndmore);
     zmq::message_t empty;
-    send_part(socket, empty);
+    send_part(socket, empty, zmq::send_flags::sndmore);
     reply.send(socket);
     if (shutdown) return 0;
     if (peer != owner) continue;  // after_reply is the session's work only

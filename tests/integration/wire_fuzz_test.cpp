@@ -202,45 +202,101 @@ TEST(WireFuzz, HelloOfAnotherVersionOrKindIsRefused) {
   shut_down(client, fluid);
 }
 
+// The number of mutated messages per module and the seed: ROCKCUT_FUZZ_MESSAGES and
+// ROCKCUT_FUZZ_SEED run a larger corpus by hand (the default is a few seconds in ctest).
+int fuzz_messages() {
+  const char* n = std::getenv("ROCKCUT_FUZZ_MESSAGES");
+  return n ? std::atoi(n) : 400;
+}
+std::uint64_t fuzz_seed() {
+  const char* n = std::getenv("ROCKCUT_FUZZ_SEED");
+  return n ? std::strtoull(n, nullptr, 10) : 20261124;
+}
+
+// The arrays a DEM module gives for the saturated reduced cut (its own Init, then a FrameRequest).
+Message dem_arrays(const rockcut::Scene& scene, const std::string& scene_dir,
+                   const std::vector<std::string>& fields) {
+  Module dem("dem_module", "arrays_dem");
+  Client client(dem.endpoint);
+  Message h = hello(wire::MODULE_KIND_DEM);
+  EXPECT_TRUE(client.request(h)->envelope.has_hello_reply());
+  Message init = init_of(scene, scene_dir);
+  EXPECT_TRUE(client.request(init, 20000ms)->envelope.has_init_reply());
+  Message frame;
+  for (const std::string& f : fields) frame.envelope.mutable_frame_request()->add_fields(f);
+  std::optional<Message> reply = client.request(frame);
+  EXPECT_TRUE(reply && reply->envelope.has_frame()) << error_of(reply);
+  shut_down(client, dem);
+  return std::move(*reply);
+}
+
+// Copies `from`'s arrays `names` into `to`.
+void copy_arrays(const Message& from, const std::vector<std::string>& names, Message& to) {
+  for (const std::string& name : names) {
+    for (const wire::ArrayHeader& h : from.envelope.arrays()) {
+      if (h.name() == name) to.add_array(name, from.array(name, h.components()), h.components());
+    }
+  }
+}
+
 // Valid envelopes of every request, then mutated: bytes flipped, cut short, grown, array headers
-// with made-up counts and too few or too many frames. The module must answer each one.
+// with made-up counts and too few or too many frames. The module (initialised with the saturated
+// reduced cut, so the fluid's step runs) must answer each one.
 TEST(WireFuzz, RandomAndMutatedMessagesNeverKillOrWedgeTheModule) {
+  const std::string scene_dir = source("cases/cutting");
+  const rockcut::Scene scene = scene::load_scene(scene_dir + "/saturated_reduced.pbtxt", {}).scene;
+  const std::vector<std::string> kinematics = {"position", "velocity_half", "displacement",
+                                               "wall_segments"};
+  std::vector<std::string> all = {"radius"};
+  all.insert(all.end(), kinematics.begin(), kinematics.end());
+  const Message arrays = dem_arrays(scene, scene_dir, all);
+  const std::size_t particles = arrays.array("radius", 1).size();
   for (const std::string exe : {"dem_module", "fluid_module"}) {
     Module module(exe, "mutated_" + exe);
     const wire::ModuleKind kind = exe == "dem_module" ? wire::MODULE_KIND_DEM : wire::MODULE_KIND_FLUID;
     Client owner(module.endpoint);
     Message h = hello(kind);
     ASSERT_TRUE(owner.request(h)->envelope.has_hello_reply());
-    const rockcut::Scene scene = tiny_scene();
-    std::vector<double> positions(2 * 900, 0.001), radii(900, 0.0003);
-    if (kind == wire::MODULE_KIND_DEM) {
-      Message init = init_of(scene);
-      ASSERT_TRUE(owner.request(init)->envelope.has_init_reply());
-    }
+    Message init = init_of(scene, scene_dir);
+    if (kind == wire::MODULE_KIND_FLUID) copy_arrays(arrays, {"radius", "position"}, init);
+    const auto init_reply = owner.request(init, 20000ms);
+    ASSERT_TRUE(init_reply && init_reply->envelope.has_init_reply()) << error_of(init_reply);
     // The seeds of the mutations.
-    std::vector<Message> seeds(6);
+    std::vector<Message> seeds(7);
     seeds[0] = hello(kind);
-    seeds[1] = init_of(scene);
-    seeds[1].add_array("radius", radii, 1);
-    seeds[1].add_array("position", positions, 2);
+    seeds[1] = init_of(scene, scene_dir);
+    copy_arrays(arrays, {"radius", "position"}, seeds[1]);
     seeds[2].envelope.mutable_advance()->set_steps(3);
-    seeds[2].envelope.mutable_advance()->set_dt_s(2e-5);
+    seeds[2].envelope.mutable_advance()->set_dt_s(1e-7);
     seeds[2].envelope.mutable_advance()->set_split_last(true);
-    seeds[3].envelope.mutable_fluid_step()->set_dt_s(1e-5);
-    seeds[3].add_array("position", positions, 2);
-    seeds[3].add_array("velocity_half", positions, 2);
-    std::vector<double> walls = {0, 0, 1, 0, 1, 0, 1, 1};
-    seeds[3].add_array("wall_segments", walls, 4);
+    seeds[3].envelope.mutable_fluid_step()->set_dt_s(1e-7);
+    seeds[3].envelope.mutable_fluid_step()->set_report(true);
+    auto* probe = seeds[3].envelope.mutable_fluid_step()->add_probes();
+    probe->set_name("p1");
+    probe->set_x_max_m(0.05);
+    probe->set_y_max_m(0.05);
+    copy_arrays(arrays, kinematics, seeds[3]);
     seeds[4].envelope.mutable_frame_request()->add_fields("position");
     seeds[5].envelope.mutable_load_state()->mutable_state()->set_module(exe + " x");
-    seeds[5].add_array("positions_m", positions, 2);
+    copy_arrays(arrays, {"position"}, seeds[5]);
+    seeds[6].envelope.mutable_apply_forces();
+    copy_arrays(arrays, {"position"}, seeds[6]);
+    seeds[6].envelope.mutable_arrays(0)->set_name("force");
+    // The valid step first: the fuzzing starts from a module that has stepped.
+    const Message& valid = kind == wire::MODULE_KIND_FLUID ? seeds[3] : seeds[2];
+    Message step;
+    step.envelope = valid.envelope;
+    step.envelope.clear_arrays();
+    copy_arrays(valid, kinematics, step);
+    const auto stepped = owner.request(step, 20000ms);
+    ASSERT_TRUE(stepped && !stepped->envelope.has_error()) << exe << ": " << error_of(stepped);
 
-    std::mt19937_64 rng(20261124);
+    std::mt19937_64 rng(fuzz_seed());
     auto uniform = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
     const double rss_start = rss_mib(module.process.pid);
     int answered = 0;
-    constexpr int kMessages = 400;
-    for (int trial = 0; trial < kMessages; ++trial) {
+    const int messages = fuzz_messages();
+    for (int trial = 0; trial < messages; ++trial) {
       Message& seed = seeds[uniform(seeds.size())];
       wire::Envelope envelope = seed.envelope;
       std::vector<std::string> frames;
@@ -250,7 +306,8 @@ TEST(WireFuzz, RandomAndMutatedMessagesNeverKillOrWedgeTheModule) {
       }
       const int how = static_cast<int>(uniform(6));
       if (how == 0 && envelope.arrays_size() > 0) {  // a count made up
-        const std::uint64_t counts[] = {0, 1, 899, 901, 1ull << 61, ~0ull, 3ull << 30};
+        const std::uint64_t counts[] = {0, 1, particles - 1, particles + 1, 1ull << 61, ~0ull,
+                                        3ull << 30};
         envelope.mutable_arrays(static_cast<int>(uniform(envelope.arrays_size())))
             ->set_count(counts[uniform(7)]);
       } else if (how == 1 && !frames.empty()) {  // a frame cut short
@@ -260,7 +317,8 @@ TEST(WireFuzz, RandomAndMutatedMessagesNeverKillOrWedgeTheModule) {
         if (frames.empty() || uniform(2)) frames.push_back(std::string(uniform(64), 'x'));
         else frames.pop_back();
       } else if (how == 3 && envelope.arrays_size() > 0) {  // components made up
-        envelope.mutable_arrays(0)->set_components(static_cast<std::uint32_t>(rng()));
+        envelope.mutable_arrays(static_cast<int>(uniform(envelope.arrays_size())))
+            ->set_components(static_cast<std::uint32_t>(rng() % 8));
       }
       std::string head = envelope.SerializeAsString();
       if (how >= 4) {  // bytes flipped, the envelope cut or grown
@@ -269,11 +327,13 @@ TEST(WireFuzz, RandomAndMutatedMessagesNeverKillOrWedgeTheModule) {
         if (uniform(3) == 0) head.resize(uniform(head.size() + 16), '\x01');
       }
       // What the mutation made of it must not end the session or run for long: a Shutdown or a
-      // long Advance is put back to a FrameRequest.
+      // long step is put back to a FrameRequest.
       wire::Envelope parsed;
       if (parsed.ParseFromString(head) &&
-          (parsed.has_shutdown() || (parsed.has_advance() && parsed.advance().steps() > 100) ||
-           (parsed.has_fluid_step() && !(std::abs(parsed.fluid_step().dt_s()) < 1e-3)))) {
+          (parsed.has_shutdown() ||
+           (parsed.has_advance() && !(parsed.advance().steps() <= 100 &&
+                                      std::abs(parsed.advance().dt_s()) < 1e-6)) ||
+           (parsed.has_fluid_step() && !(std::abs(parsed.fluid_step().dt_s()) < 1e-6)))) {
         head = seeds[4].envelope.SerializeAsString();
         frames.clear();
       }
@@ -284,7 +344,7 @@ TEST(WireFuzz, RandomAndMutatedMessagesNeverKillOrWedgeTheModule) {
       ++answered;
       ASSERT_TRUE(module.alive()) << exe << " died at message " << trial;
     }
-    EXPECT_EQ(answered, kMessages);
+    EXPECT_EQ(answered, messages);
     // Bounded memory: a few tens of MiB for this scene whatever the peer announced.
     EXPECT_LT(rss_mib(module.process.pid) - rss_start, 200.0) << exe;
     // Purely random frame 0s.

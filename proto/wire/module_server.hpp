@@ -30,11 +30,11 @@ class ModuleHandler {
   virtual void after_reply() {}
 };
 
-/// The largest ZeroMQ frame a module takes before Init (ZMQ_MAXMSGSIZE): Init's arrays for 8
-/// million particles. A peer announcing more is disconnected by ZeroMQ before anything is
-/// buffered. After Init, connections made later get kBytesPerParticle per particle (at least
-/// kMinMessageBytes).
-inline constexpr std::int64_t kMaxMessageBytesBeforeInit = std::int64_t{128} << 20;
+/// The largest ZeroMQ frame a module takes (ZMQ_MAXMSGSIZE): one array of a State of
+/// scene::kMaxParticles particles at up to 32 doubles each (bonds, contacts). A peer announcing
+/// more is disconnected by ZeroMQ before anything is buffered. After Init, connections made later
+/// get kBytesPerParticle per particle (at least kMinMessageBytes, at most this).
+inline constexpr std::int64_t kMaxMessageBytesBeforeInit = std::int64_t{512} << 20;
 inline constexpr std::int64_t kBytesPerParticle = 512;
 inline constexpr std::int64_t kMinMessageBytes = std::int64_t{16} << 20;
 

@@ -291,6 +291,19 @@ TEST(WireFuzz, RandomAndMutatedMessagesNeverKillOrWedgeTheModule) {
     const auto stepped = owner.request(step, 20000ms);
     ASSERT_TRUE(stepped && !stepped->envelope.has_error()) << exe << ": " << error_of(stepped);
 
+    if (kind == wire::MODULE_KIND_FLUID) {
+      // A wall_segments array shorter than its header claims (once a heap-buffer-overflow in
+      // the boundary's faces_segment).
+      Message short_walls;
+      short_walls.envelope = seeds[3].envelope;
+      short_walls.envelope.clear_arrays();
+      copy_arrays(seeds[3], kinematics, short_walls);
+      for (auto& h : *short_walls.envelope.mutable_arrays()) {
+        if (h.name() == "wall_segments") h.set_count(h.count() + 1000);
+      }
+      EXPECT_NE(error_of(owner.request(short_walls)).find("array 'wall_segments'"),
+                std::string::npos);
+    }
     std::mt19937_64 rng(fuzz_seed());
     auto uniform = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
     const double rss_start = rss_mib(module.process.pid);

@@ -2,6 +2,7 @@
 //   coupler run CASE [--out DIR] [--transport ipc|inproc|tcp] [--set path=value ...]
 //   coupler resume OUT [--set path=value ...]    continue a run from its newest valid checkpoint
 //   coupler validate CASE [--set path=value ...] [--print]
+//   coupler keygen DIR                           CURVE keys for tcp sessions (README, "Security")
 #include <unistd.h>
 
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include "output/h5_handle.hpp"
 #include "run/run_session.hpp"
 #include "scene/scene_loader.hpp"
+#include "wire/curve_keys.hpp"
 #include "wire/module_main.hpp"
 
 namespace {
@@ -80,6 +82,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   run->add_option("--fluid-endpoint", options.fluid_endpoint, "tcp: where fluid_module serves")
       ->capture_default_str();
+  run->add_option("--curve-keys", options.curve_keys,
+                  "tcp: key directory (`coupler keygen`) with coupler.secret, coupler.public and "
+                  "the modules' public keys: the sessions are authenticated and encrypted (CURVE); "
+                  "start the modules with the same --curve-keys");
 
   run->add_option("--checkpoint-every", options.checkpoint_every_s,
                   "Wall time between two checkpoints in OUT/checkpoints/ [s]; 0: none on wall time "
@@ -108,6 +114,7 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(transports, CLI::ignore_case));
   resume->add_option("--dem-endpoint", resume_options.dem_endpoint, "As for run");
   resume->add_option("--fluid-endpoint", resume_options.fluid_endpoint, "As for run");
+  resume->add_option("--curve-keys", resume_options.curve_keys, "As for run");
   resume->add_option("--checkpoint-every", resume_options.checkpoint_every_s, "As for run")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
@@ -122,10 +129,33 @@ int main(int argc, char** argv) {
                 "Also print the effective scene (its bases merged, the overrides applied), as run.h5 "
                 "stores it");
 
+  std::string keys_dir;
+  CLI::App* keygen = app.add_subcommand(
+      "keygen", "Make CURVE key pairs (coupler, dem_module, fluid_module; NAME.public and "
+                "NAME.secret, the secret files readable by you only) in DIR for tcp sessions; "
+                "copy DIR/coupler.public and a module's own pair to the host that runs it");
+  keygen->add_option("DIR", keys_dir, "Key directory (made with mode 0700)")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  }
+  if (keygen->parsed()) {
+    try {
+      rockcut::wire::make_curve_keys(keys_dir, {"coupler", "dem_module", "fluid_module"});
+      std::cout << "keys written to " << keys_dir << "\n";
+      return 0;
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return rockcut::coupler::kExitBadInput;
+    }
+  }
+  for (const rockcut::coupler::RunOptions* o : {&options, &resume_options}) {
+    if (!o->curve_keys.empty() && o->transport != Transport::tcp) {
+      std::cerr << "error: --curve-keys applies to --transport tcp only\n";
+      return rockcut::coupler::kExitBadInput;
+    }
   }
   if (val->parsed()) return validate(scene_path, overrides, print);
   if (resume->parsed()) {

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "run/signals.hpp"
+#include "wire/curve_keys.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
 #include "wire/shared_payload.hpp"
@@ -49,8 +50,15 @@ ModuleLink::ModuleLink(zmq::context_t& context, const LinkSpec& spec) : spec_(sp
   wire::ClientHooks hooks;
   hooks.dead = [this] { return dead(); };
   hooks.interrupted = [] { return interrupt_now(); };
+  std::optional<wire::CurveClientKeys> curve;
+  if (!spec.curve_keys.empty()) {
+    // The coupler's own pair, and the module's public key: a server without it cannot answer.
+    const wire::CurveKeyPair own = wire::read_key_pair(spec.curve_keys, "coupler");
+    curve = wire::CurveClientKeys{own.public_key, own.secret_key,
+                                  wire::read_public_key(spec.curve_keys, kind)};
+  }
   client_ = std::make_unique<wire::ModuleClient>(context, label_, spec.endpoint, spec.timeout,
-                                                 std::move(hooks));
+                                                 std::move(hooks), curve);
 }
 
 ModuleLink::~ModuleLink() {
@@ -99,7 +107,14 @@ wire::HelloReply ModuleLink::handshake() {
   hello->set_protocol_version(wire::kProtocolVersion);
   hello->set_expected_kind(spec_.kind);
   hello->set_coupler_version(ROCKCUT_VERSION);
-  this->request(request, reply);
+  try {
+    this->request(request, reply);
+  } catch (const wire::ModuleFailure& e) {
+    // A module that refuses the handshake (another protocol version or kind) is the wrong
+    // module, not a refused scene.
+    if (!e.refused()) throw;
+    throw wire::ModuleFailure(label_, reply.envelope.error().message());
+  }
   if (!reply.envelope.has_hello_reply()) {
     throw wire::ModuleFailure(label_, "did not answer the handshake with HelloReply");
   }

@@ -27,6 +27,8 @@ struct LinkSpec {
   std::string endpoint;               ///< where the module serves
   std::filesystem::path executable;   ///< ipc only: the program to start
   std::chrono::milliseconds timeout{30000};
+  /// tcp only: key directory for a CURVE session (wire/curve_keys.hpp); empty: plain tcp.
+  std::filesystem::path curve_keys;
 };
 
 class ModuleLink {

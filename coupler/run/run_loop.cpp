@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "run/reply_checks.hpp"
 #include "run/run_session.hpp"
 #include "run/signals.hpp"
 #include "wire/protocol.hpp"
@@ -99,13 +100,17 @@ void RunSession::exchange(unsigned steps, bool initial) {
   dem_.link->set_timeout(allowance(steps));
   dem_.link->request(request_, reply_);
   if (reply_.envelope.has_step_report()) {
-    record_step_report(reply_.envelope.step_report());  // a guard tripped on the completed step
+    const wire::StepReport& r = reply_.envelope.step_report();
+    check_progress(dem_.link->label(), r.step(), r.time_s(), step_, time_s_, 0, true);
+    record_step_report(r);  // a guard tripped on the completed step
   }
   if (!reply_.envelope.has_kinematics()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered Advance without Kinematics");
   }
   const wire::Kinematics& kinematics = reply_.envelope.kinematics();
   const double t = kinematics.time_s();
+  const std::uint64_t kinematics_step = kinematics.step();  // reply_ is reused below
+  check_progress(dem_.link->label(), kinematics_step, t, step_, time_s_, steps, false);
   dem_busy_.read(reply_.envelope);
 
   // 2. Fluid: advance the pressure by N dt (nothing at t = 0) and return the forces. The DEM
@@ -129,6 +134,11 @@ void RunSession::exchange(unsigned steps, bool initial) {
   bytes_in_shared_memory_ += reply_.shared_payload_bytes();
   fluid_request_.take_arrays(reply_);
   fluid_->link->request(fluid_request_, fluid_reply_);
+  if (!fluid_reply_.envelope.has_fluid_result()) {
+    throw wire::ModuleFailure(fluid_->link->label(), "answered FluidStep without FluidResult");
+  }
+  checked_array(fluid_->link->label(), fluid_reply_, std::string(wire::field::kForce), 2,
+                dem_.init.particle_count());
   fluid_busy_.read(fluid_reply_.envelope);
   if (fluid_reply_.envelope.fluid_result().has_guard()) {
     throw GuardStop{fluid_->link->label(), fluid_reply_.envelope.fluid_result().guard()};
@@ -152,6 +162,8 @@ void RunSession::exchange(unsigned steps, bool initial) {
   if (!reply_.envelope.has_step_report()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered ApplyForces without StepReport");
   }
+  check_progress(dem_.link->label(), reply_.envelope.step_report().step(),
+                 reply_.envelope.step_report().time_s(), kinematics_step, t, 0, false);
   dem_busy_.read(reply_.envelope);
   scalars_.clear();
   for (const auto& [name, value] : fluid_reply_.envelope.fluid_result().scalars()) {
@@ -171,6 +183,8 @@ void RunSession::advance_dry(unsigned steps) {
   if (!reply_.envelope.has_step_report()) {
     throw wire::ModuleFailure(dem_.link->label(), "answered Advance without StepReport");
   }
+  const wire::StepReport& r = reply_.envelope.step_report();
+  check_progress(dem_.link->label(), r.step(), r.time_s(), step_, time_s_, steps, r.has_guard());
   dem_busy_.read(reply_.envelope);
   ++exchanges_;
   scalars_.clear();
@@ -226,9 +240,10 @@ void RunSession::maybe_record(bool last) {
 
 void RunSession::write_breaks(const wire::Message& frame) {
   // One row per bond break in /breaks: time, place and mode (0 tensile, 1 shear).
-  const auto time = frame.array("break_time_s", 1);
-  const auto position = frame.array("break_position", 2);
-  const auto mode = frame.array("break_mode", 1);
+  const std::string& module = dem_.link->label();
+  const auto time = checked_array(module, frame, "break_time_s", 1, std::nullopt);
+  const auto position = checked_array(module, frame, "break_position", 2, time.size());
+  const auto mode = checked_array(module, frame, "break_mode", 1, time.size());
   for (std::size_t k = 0; k < time.size(); ++k) {
     run_file_->append_record("breaks", time[k], step_,
                              {{"mode", mode[k]}, {"x_m", position[2 * k]}, {"y_m", position[2 * k + 1]}});
@@ -242,10 +257,12 @@ void RunSession::write_frame() {
   }
   if (dem_logs_breaks_) request_.envelope.mutable_frame_request()->add_fields("breaks");
   dem_.link->request(request_, reply_);
+  const std::uint64_t particles = dem_.init.particle_count();
   std::vector<FrameField> fields;
+  std::uint32_t components = 0;
   for (const std::string& f : dem_frame_fields_) {
-    const std::uint32_t components = reply_.envelope.arrays(static_cast<int>(fields.size())).components();
-    fields.push_back({f, static_cast<int>(components), reply_.array(f, components)});
+    const auto values = frame_array(dem_.link->label(), reply_, f, particles, components);
+    fields.push_back({f, static_cast<int>(components), values});
   }
   if (fluid_ && !fluid_frame_fields_.empty()) {
     fluid_request_.clear();
@@ -255,11 +272,12 @@ void RunSession::write_frame() {
     fluid_->link->request(fluid_request_, fluid_reply_);
     for (std::size_t k = 0; k < fluid_frame_fields_.size(); ++k) {
       const std::string& f = fluid_frame_fields_[k];
-      const std::uint32_t components = fluid_reply_.envelope.arrays(static_cast<int>(k)).components();
-      fields.push_back({f, static_cast<int>(components), fluid_reply_.array(f, components)});
+      const auto values = frame_array(fluid_->link->label(), fluid_reply_, f, particles, components);
+      fields.push_back({f, static_cast<int>(components), values});
     }
   }
-  const auto position = reply_.array(wire::field::kPosition, 2);
+  const auto position = checked_array(dem_.link->label(), reply_,
+                                      std::string(wire::field::kPosition), 2, particles);
   if (initial_position_.empty()) initial_position_.assign(position.begin(), position.end());
   last_position_.assign(position.begin(), position.end());
   for (const FrameField& f : fields) {

@@ -16,6 +16,7 @@
 #include "run/expected_error.hpp"
 #include "output/text_lines.hpp"
 #include "run/out_dir_lock.hpp"
+#include "run/reply_checks.hpp"
 #include "run/signals.hpp"
 #include "run/verification.hpp"
 #include "wire/protocol.hpp"
@@ -254,7 +255,10 @@ void RunSession::start_modules() {
         spec.executable = module_executable(exe_from_scene, exe);
         break;
       case Transport::inproc: spec.endpoint = "inproc://" + short_name; break;
-      case Transport::tcp: spec.endpoint = tcp_endpoint; break;
+      case Transport::tcp:
+        spec.endpoint = tcp_endpoint;
+        spec.curve_keys = options_.curve_keys;
+        break;
     }
     return spec;
   };
@@ -286,9 +290,13 @@ void RunSession::start_modules() {
 
 void RunSession::init_modules() {
   request_.clear();
+  // The scene's directory bounds what a module reads (the DEM's packing file).
+  const std::string scene_dir = fs::absolute(loaded_.path.parent_path()).lexically_normal().string();
   *request_.envelope.mutable_init()->mutable_scene() = scene_;
+  request_.envelope.mutable_init()->set_scene_dir(scene_dir);
   dem_.link->request(request_, reply_);
   dem_.init = reply_.envelope.init_reply();
+  check_init_reply(dem_.link->label(), dem_.init, std::nullopt);
   if (!fluid_) return;
 
   // The fluid gets the static particle data (radius, initial position) once.
@@ -298,9 +306,11 @@ void RunSession::init_modules() {
   dem_.link->request(request_, reply_);
   fluid_request_.clear();
   *fluid_request_.envelope.mutable_init()->mutable_scene() = scene_;
+  fluid_request_.envelope.mutable_init()->set_scene_dir(scene_dir);
   fluid_request_.take_arrays(reply_);
   fluid_->link->request(fluid_request_, fluid_reply_);
   fluid_->init = fluid_reply_.envelope.init_reply();
+  check_init_reply(fluid_->link->label(), fluid_->init, dem_.init.particle_count());
   fluid_busy_.read(fluid_reply_.envelope);
 
   // Subscribe the DEM to exactly the kinematics the fluid model needs: nothing else is sent.

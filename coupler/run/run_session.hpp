@@ -50,6 +50,8 @@ struct RunOptions {
   Transport transport = Transport::ipc;
   std::string dem_endpoint = "tcp://127.0.0.1:5555";    ///< tcp only
   std::string fluid_endpoint = "tcp://127.0.0.1:5556";  ///< tcp only
+  /// tcp only: key directory (wire/curve_keys.hpp) for CURVE sessions; empty: plain tcp.
+  std::filesystem::path curve_keys;
   std::filesystem::path module_dir;    ///< where dem_module and fluid_module are (the coupler's dir)
   /// Wall time between two checkpoints [s]; 0: none on wall time.
   double checkpoint_every_s = 600.0;

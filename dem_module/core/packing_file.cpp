@@ -79,7 +79,8 @@ Packing read_packing_file(const std::filesystem::path& path) {
       if (*c == '+') ++c;  // from_chars does not take a leading '+'
       const auto [ptr, ec] = std::from_chars(c, end, v[count]);
       if (ec != std::errc() || (ptr != end && !is_space(*ptr))) {
-        fail(path, line_no, "not a number: '" + std::string(c, end) + "'");
+        // The text is not quoted: the error may go to a peer that may not read the file.
+        fail(path, line_no, "not a number (value " + std::to_string(count + 1) + " of x_m y_m radius_m)");
       }
       ++count;
       c = ptr;

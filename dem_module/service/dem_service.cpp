@@ -1,10 +1,13 @@
 #include "service/dem_service.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 
 #include "core/clusters.hpp"
 #include "core/thread_advice.hpp"
+#include "scene/particle_budget.hpp"
+#include "scene/validation.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
 #include "wire/state_message.hpp"
@@ -50,8 +53,61 @@ void DemService::handle(const wire::Message& request, wire::Message& reply) {
   }
 }
 
+namespace {
+
+// The packing file, if the scene names one, must be a regular file of bounded size in the scene's
+// directory or below it (Init.scene_dir, from the coupler): a peer cannot make the module read
+// anything else. Returns the scene with the file's path made canonical.
+rockcut::Scene with_allowed_packing_file(const wire::Init& init) {
+  namespace fs = std::filesystem;
+  rockcut::Scene scene = init.scene();
+  if (!scene.dem().has_packing_file()) return scene;
+  const fs::path dir(init.scene_dir());
+  if (dir.empty() || dir.is_relative()) {
+    throw std::invalid_argument("dem.packing_file: Init names no absolute scene directory to "
+                                "read it from");
+  }
+  std::error_code ec;
+  const fs::path allowed = fs::canonical(dir, ec);
+  if (ec) throw std::invalid_argument("dem.packing_file: the scene directory cannot be opened");
+  const fs::path named(scene.dem().packing_file().path());
+  // Where it leads (symbolic links followed) is checked before whether it exists: the module
+  // tells nothing about files outside the directory.
+  const fs::path file = fs::weakly_canonical(named.is_relative() ? allowed / named : named, ec);
+  const auto [end, _] = std::mismatch(allowed.begin(), allowed.end(), file.begin(), file.end());
+  if (ec || end != allowed.end()) {
+    throw std::invalid_argument("dem.packing_file \"" + named.string() +
+                                "\": outside the scene's directory " + allowed.string() +
+                                " (a module reads files only there and below)");
+  }
+  if (!fs::exists(file, ec)) {
+    throw std::invalid_argument("dem.packing_file \"" + named.string() +
+                                "\": cannot open packing file");
+  }
+  if (!fs::is_regular_file(file, ec)) {
+    throw std::invalid_argument("dem.packing_file \"" + named.string() + "\": not a regular file");
+  }
+  const auto bytes = fs::file_size(file, ec);
+  if (ec || bytes > scene::kMaxPackingFileBytes) {
+    throw std::invalid_argument("dem.packing_file \"" + named.string() + "\": larger than " +
+                                std::to_string(scene::kMaxPackingFileBytes >> 20) +
+                                " MiB (at most " + std::to_string(scene::kMaxParticles) +
+                                " particles are allowed)");
+  }
+  scene.mutable_dem()->mutable_packing_file()->set_path(file.string());
+  return scene;
+}
+
+}  // namespace
+
 void DemService::init(const wire::Init& init, wire::Message& reply) {
-  setup_ = build_dem(init.scene());
+  scene::validate_received(init.scene());
+  setup_ = build_dem(with_allowed_packing_file(init));
+  if (setup_.system->particles().size() > scene::kMaxParticles) {
+    setup_ = {};
+    throw std::invalid_argument("the packing file holds more than " +
+                                std::to_string(scene::kMaxParticles) + " particles");
+  }
   position_at_exchange_ = setup_.system->particles().position;
 
   wire::InitReply* r = reply.envelope.mutable_init_reply();
@@ -142,7 +198,7 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
 
 void DemService::hold_forces(const wire::Message& request) {
   DemSystem& s = system();
-  const auto force = request.array(wire::field::kForce, 2);
+  const auto force = request.array(wire::field::kForce, 2, s.particles().size());
   if (s.in_split_step()) {
     s.finish_step(split_dt_s_, force);
   } else {

@@ -8,6 +8,8 @@
 
 #include "models/registry.hpp"
 #include "sp/format.hpp"
+#include "scene/particle_budget.hpp"
+#include "scene/validation.hpp"
 #include "wire/inproc_registry.hpp"
 #include "wire/protocol.hpp"
 #include "wire/state_message.hpp"
@@ -46,6 +48,8 @@ void FluidService::handle(const wire::Message& request, wire::Message& reply) {
 void FluidService::init(const wire::Message& request, wire::Message& reply) {
   // Threads of this module's OpenMP loops (the calling thread's setting: in an inproc run the
   // DEM thread keeps its own).
+  // The scene is checked with the coupler's rules first: threads within (max), finite numbers.
+  scene::validate_received(request.envelope.init().scene());
   omp_set_num_threads(static_cast<int>(std::max(1u, request.envelope.init().scene().fluid().threads())));
   model_ = make_model(request.envelope.init().scene());
   needs_ = model_->needs();
@@ -56,8 +60,15 @@ void FluidService::init(const wire::Message& request, wire::Message& reply) {
     particle_count_ = data.radius.size();
   }
   if (contains(needs_static, wire::field::kPosition)) {
-    data.position = request.array(wire::field::kPosition, 2);
+    data.position = contains(needs_static, wire::field::kRadius)
+                        ? request.array(wire::field::kPosition, 2, particle_count_)
+                        : request.array(wire::field::kPosition, 2);
     particle_count_ = data.position.size() / 2;
+  }
+  if (particle_count_ > scene::kMaxParticles) {
+    throw std::invalid_argument("fluid_module: Init sends " + std::to_string(particle_count_) +
+                                " particles; at most " + std::to_string(scene::kMaxParticles) +
+                                " are allowed");
   }
   derive_displacement_ =
     contains(needs_, wire::field::kDisplacement) && contains(needs_, wire::field::kPosition);
@@ -93,9 +104,13 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
   FluidModel& m = model();
   const wire::FluidStep& s = request.envelope.fluid_step();
   Kinematics k;
-  if (contains(needs_, wire::field::kPosition)) k.position = request.array(wire::field::kPosition, 2);
+  // Every per-particle array must have the particles of Init: the model indexes them by particle.
+  const std::size_t n = particle_count_;
+  if (contains(needs_, wire::field::kPosition)) {
+    k.position = request.array(wire::field::kPosition, 2, n);
+  }
   if (contains(needs_, wire::field::kVelocityHalf)) {
-    k.velocity_half = request.array(wire::field::kVelocityHalf, 2);
+    k.velocity_half = request.array(wire::field::kVelocityHalf, 2, n);
   }
   if (derive_displacement_) {
     if (k.position.size() != previous_position_.size()) {
@@ -109,10 +124,13 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
     std::copy(k.position.begin(), k.position.end(), previous_position_.begin());
     k.displacement = displacement_;
   } else if (contains(needs_, wire::field::kDisplacement)) {
-    k.displacement = request.array(wire::field::kDisplacement, 2);
+    k.displacement = request.array(wire::field::kDisplacement, 2, n);
   }
   if (contains(needs_, wire::field::kWallSegments)) {
     k.wall_segments = request.array(wire::field::kWallSegments, 4);
+  }
+  if (!std::isfinite(s.dt_s()) || s.dt_s() < 0.0 || !std::isfinite(s.time_s())) {
+    throw std::invalid_argument("fluid_module: FluidStep with dt_s or time_s not finite, or dt_s < 0");
   }
   m.step(s.dt_s(), s.time_s(), k, force_);
   wire::FluidResult* result = reply.envelope.mutable_fluid_result();

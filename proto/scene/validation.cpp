@@ -9,6 +9,9 @@
 #include "scene/field_docs.hpp"
 #include "scene/format.hpp"
 #include "scene/nearest_name.hpp"
+#include "scene/particle_budget.hpp"
+
+#include <stdexcept>
 
 namespace rockcut::scene {
 namespace {
@@ -101,6 +104,14 @@ class Validator {
     }
   }
 
+  // Checks that need more than one field (scene/particle_budget.hpp).
+  void check_scene(const rockcut::Scene& scene, const SourceMap* map, const Location& opening) {
+    if (const auto problem = particle_budget_problem(scene)) {
+      const Field* dem = scene.GetDescriptor()->FindFieldByName("dem");
+      report(where(scene, *dem, -1, map, opening), *problem);
+    }
+  }
+
   std::vector<Diagnostic> diagnostics;
 
  private:
@@ -184,7 +195,22 @@ std::vector<Diagnostic> validate(const pb::Message& root, const std::string& fil
                                  const OverrideSites& sites) {
   Validator validator(sites);
   validator.check_message(root, "", map, {file, 1, 1});
+  if (const auto* scene = dynamic_cast<const rockcut::Scene*>(&root)) {
+    validator.check_scene(*scene, map, {file, 1, 1});
+  }
   return std::move(validator.diagnostics);
+}
+
+void validate_received(const rockcut::Scene& scene) {
+  const std::vector<Diagnostic> problems = validate(scene, "scene", nullptr, {});
+  if (problems.empty()) return;
+  std::string text = "the scene sent in Init is not valid:";
+  constexpr std::size_t kShown = 5;
+  for (std::size_t k = 0; k < problems.size() && k < kShown; ++k) {
+    text += " " + problems[k].message + (k + 1 < problems.size() ? ";" : "");
+  }
+  if (problems.size() > kShown) text += " and " + std::to_string(problems.size() - kShown) + " more";
+  throw std::invalid_argument(text);
 }
 
 }  // namespace rockcut::scene

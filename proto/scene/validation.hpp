@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "rockcut/scene.pb.h"
+
 #include "scene/overrides.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/source_map.hpp"
@@ -19,5 +21,10 @@ namespace rockcut::scene {
 /// wrote the value); problems of the whole scene are reported at the start of `file`.
 std::vector<Diagnostic> validate(const google::protobuf::Message& root, const std::string& file,
                                  const SourceMap* map, const OverrideSites& sites);
+
+/// What a module runs on the scene it is sent in Init: the same rules as validate() (the
+/// coupler's), so a peer cannot skip them. Throws std::invalid_argument naming the first problems
+/// in one line.
+void validate_received(const rockcut::Scene& scene);
 
 }  // namespace rockcut::scene

@@ -1,6 +1,7 @@
 #include "wire/message.hpp"
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 
 #include "wire/protocol.hpp"
@@ -56,19 +57,23 @@ std::span<const double> Message::array(std::string_view name, std::uint32_t comp
   for (int i = 0; i < envelope.arrays_size(); ++i) {
     const ArrayHeader& h = envelope.arrays(i);
     if (h.name() != name) continue;
-    if (h.components() != components || h.dtype() != DTYPE_F64) {
+    if (components == 0 || h.components() != components || h.dtype() != DTYPE_F64) {
       throw ProtocolError("array '" + std::string(name) + "' has " +
                           std::to_string(h.components()) + " components, expected " +
                           std::to_string(components));
     }
-    const zmq::message_t& frame = frames_.at(static_cast<std::size_t>(i));
-    const std::size_t n = h.count() * h.components();
     if (!h.shared_segment().empty()) return read_shared(h);
-    if (frame.size() != n * sizeof(double)) {
+    const zmq::message_t& frame = frames_.at(static_cast<std::size_t>(i));
+    // Compared by division: count * components * 8 may wrap for a count a peer made up.
+    const std::size_t doubles = frame.size() / sizeof(double);
+    if (frame.size() % sizeof(double) != 0 || h.count() != doubles / components ||
+        doubles % components != 0) {
       throw ProtocolError("array '" + std::string(name) + "': frame of " +
-                          std::to_string(frame.size()) + " bytes for " + std::to_string(n) +
+                          std::to_string(frame.size()) + " bytes for " +
+                          std::to_string(h.count()) + " x " + std::to_string(components) +
                           " doubles");
     }
+    const std::size_t n = doubles;
     const void* data = frame.data();
     if (reinterpret_cast<std::uintptr_t>(data) % alignof(double) == 0) {
       return {static_cast<const double*>(data), n};
@@ -80,6 +85,17 @@ std::span<const double> Message::array(std::string_view name, std::uint32_t comp
   throw ProtocolError("message lacks the array '" + std::string(name) + "'");
 }
 
+std::span<const double> Message::array(std::string_view name, std::uint32_t components,
+                                       std::size_t count) const {
+  const std::span<const double> values = array(name, components);
+  if (values.size() != count * components) {
+    throw ProtocolError("array '" + std::string(name) + "' has " +
+                        std::to_string(values.size() / components) + " rows, expected " +
+                        std::to_string(count));
+  }
+  return values;
+}
+
 void Message::clear() {
   envelope.Clear();
   frames_.clear();
@@ -88,7 +104,11 @@ void Message::clear() {
 
 std::size_t Message::payload_bytes() const {
   std::size_t bytes = 0;
-  for (const ArrayHeader& h : envelope.arrays()) bytes += h.count() * h.components() * sizeof(double);
+  for (std::size_t i = 0; i < frames_.size(); ++i) {
+    const ArrayHeader& h = envelope.arrays(static_cast<int>(i));
+    bytes += h.shared_segment().empty() ? frames_[i].size()
+                                        : h.count() * h.components() * sizeof(double);
+  }
   return bytes;
 }
 
@@ -100,8 +120,6 @@ std::size_t Message::shared_payload_bytes() const {
   return bytes;
 }
 
-namespace {
-// Sends one part, resuming after a signal handler ran (EINTR).
 void send_part(zmq::socket_t& socket, zmq::message_t& part, zmq::send_flags flags) {
   for (;;) {
     try {
@@ -112,7 +130,6 @@ void send_part(zmq::socket_t& socket, zmq::message_t& part, zmq::send_flags flag
     }
   }
 }
-}  // namespace
 
 void Message::send(zmq::socket_t& socket) {
   const std::string head_bytes = envelope.SerializeAsString();
@@ -126,8 +143,6 @@ void Message::send(zmq::socket_t& socket) {
   frames_.clear();  // sent frames are moved out by ZeroMQ
 }
 
-namespace {
-// Blocking receive that resumes after a signal handler ran (EINTR).
 void receive_part(zmq::socket_t& socket, zmq::message_t& part) {
   for (;;) {
     try {
@@ -137,25 +152,45 @@ void receive_part(zmq::socket_t& socket, zmq::message_t& part) {
     }
   }
 }
-}  // namespace
 
 void Message::receive(zmq::socket_t& socket) {
   clear();
   zmq::message_t head;
   receive_part(socket, head);
-  if (!envelope.ParseFromArray(head.data(), static_cast<int>(head.size()))) {
-    throw ProtocolError("frame 0 is not a rockcut.wire.Envelope");
-  }
+  receive_body(socket, head);
+}
+
+void Message::receive_body(zmq::socket_t& socket, zmq::message_t& head) {
+  clear();
+  // The whole multipart message is read before anything is checked, so a malformed one leaves
+  // no parts behind to be taken for the next message.
   bool more = head.more();
+  bool too_many = false;
   while (more) {
     zmq::message_t part;
     receive_part(socket, part);
     more = part.more();
-    frames_.push_back(std::move(part));
+    if (frames_.size() < kMaxArrays) {
+      frames_.push_back(std::move(part));
+    } else {
+      too_many = true;
+    }
+  }
+  if (too_many) {
+    const std::size_t n = frames_.size();
+    clear();
+    throw ProtocolError("more than " + std::to_string(n) + " array frames in one message");
+  }
+  if (head.size() > static_cast<std::size_t>(INT32_MAX) ||
+      !envelope.ParseFromArray(head.data(), static_cast<int>(head.size()))) {
+    clear();
+    throw ProtocolError("frame 0 is not a rockcut.wire.Envelope");
   }
   if (frames_.size() != static_cast<std::size_t>(envelope.arrays_size())) {
-    throw ProtocolError("envelope announces " + std::to_string(envelope.arrays_size()) +
-                        " arrays, " + std::to_string(frames_.size()) + " frames arrived");
+    const std::string what = "envelope announces " + std::to_string(envelope.arrays_size()) +
+                             " arrays, " + std::to_string(frames_.size()) + " frames arrived";
+    clear();
+    throw ProtocolError(what);
   }
 }
 

@@ -27,6 +27,11 @@ class ProtocolError : public std::runtime_error {
 
 class SharedPayloadArena;
 
+/// One part of a multipart message, sent or received (blocking), resuming after a signal
+/// handler ran (EINTR). Throws zmq::error_t on other errors.
+void send_part(zmq::socket_t& socket, zmq::message_t& part, zmq::send_flags flags);
+void receive_part(zmq::socket_t& socket, zmq::message_t& part);
+
 class Message {
  public:
   Envelope envelope;
@@ -43,16 +48,28 @@ class Message {
   void take_arrays(Message& other);
 
   bool has_array(std::string_view name) const;
-  /// The array `name`; throws ProtocolError if it is missing or has other components.
+  /// The array `name`; throws ProtocolError if it is missing, has other components, or its
+  /// header's count does not match the bytes that arrived.
   std::span<const double> array(std::string_view name, std::uint32_t components) const;
+  /// The same, and throws ProtocolError unless it has exactly `count` rows (e.g. one per particle).
+  std::span<const double> array(std::string_view name, std::uint32_t components,
+                                std::size_t count) const;
 
   /// Drops the envelope and the arrays (keeps capacity for reuse).
   void clear();
 
   /// Sends all frames. Throws zmq::error_t on transport errors.
   void send(zmq::socket_t& socket);
-  /// Receives one whole message (blocking). Throws ProtocolError if it is malformed.
+  /// Receives one whole message (blocking). Throws ProtocolError if it is malformed; the whole
+  /// message has been read from the socket then too.
   void receive(zmq::socket_t& socket);
+  /// The same when frame 0 (`head`) was already received (a ROUTER socket's routing frames come
+  /// before it).
+  void receive_body(zmq::socket_t& socket, zmq::message_t& head);
+
+  /// More array frames than this in one message are a protocol error (the protocol's largest,
+  /// a State, carries a few tens).
+  static constexpr std::size_t kMaxArrays = 256;
 
   /// Bytes of array payload, in frames or in shared memory (for transport statistics).
   std::size_t payload_bytes() const;

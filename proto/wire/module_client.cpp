@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "wire/module_server.hpp"
 #include "wire/spin_wait.hpp"
 
 namespace rockcut::wire {
@@ -13,12 +14,20 @@ constexpr std::chrono::milliseconds kPollSlice{50};
 
 ModuleClient::ModuleClient(zmq::context_t& context, std::string module_name,
                            const std::string& endpoint, std::chrono::milliseconds timeout,
-                           ClientHooks hooks)
+                           ClientHooks hooks, const std::optional<CurveClientKeys>& curve)
     : name_(std::move(module_name)),
       socket_(context, zmq::socket_type::req),
       timeout_(timeout),
       hooks_(std::move(hooks)) {
   socket_.set(zmq::sockopt::linger, 0);
+  // A reply frame is bounded like a request's (module_server.hpp): a module announcing more is
+  // disconnected before anything is buffered, and then named when the timeout passes.
+  socket_.set(zmq::sockopt::maxmsgsize, kMaxMessageBytesBeforeInit);
+  if (curve) {
+    socket_.set(zmq::sockopt::curve_serverkey, curve->server_key);
+    socket_.set(zmq::sockopt::curve_publickey, curve->public_key);
+    socket_.set(zmq::sockopt::curve_secretkey, curve->secret_key);
+  }
   socket_.connect(endpoint);
 }
 

@@ -45,10 +45,18 @@ struct ClientHooks {
   std::function<bool()> interrupted;
 };
 
+/// A CURVE session (wire/curve_keys.hpp): the client's key pair and the server's public key, Z85.
+struct CurveClientKeys {
+  std::string public_key;
+  std::string secret_key;
+  std::string server_key;
+};
+
 class ModuleClient {
  public:
   ModuleClient(zmq::context_t& context, std::string module_name, const std::string& endpoint,
-               std::chrono::milliseconds timeout, ClientHooks hooks);
+               std::chrono::milliseconds timeout, ClientHooks hooks,
+               const std::optional<CurveClientKeys>& curve = std::nullopt);
 
   /// Sends a request; pair with receive(). Splitting the two lets the coupler overlap work.
   void send(Message& request);

@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "wire/curve_keys.hpp"
+
 namespace rockcut::wire {
 
 void tune_allocator_for_bulk_frames() {
@@ -22,11 +24,26 @@ int module_main(int argc, char** argv, ModuleHandler& handler) {
   app.add_option("--bind", endpoint,
                  "ZeroMQ endpoint to serve on, e.g. tcp://127.0.0.1:5555 or ipc:///tmp/x.sock")
       ->capture_default_str();
+  std::string keys_dir;
+  app.add_option("--curve-keys", keys_dir,
+                 "Key directory (made by `coupler keygen DIR`): serve with CURVE security, with "
+                 "this module's key pair from it, accepting only the coupler's public key "
+                 "(coupler.public). Without it the module serves without authentication: keep it "
+                 "on loopback");
   ServeOptions options;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  }
+  if (!keys_dir.empty()) {
+    try {
+      options.curve_secret_key = read_key_pair(keys_dir, handler.name()).secret_key;
+      options.curve_client_key = read_public_key(keys_dir, "coupler");
+    } catch (const std::exception& e) {
+      std::cerr << handler.name() << ": " << e.what() << "\n";
+      return 2;
+    }
   }
   try {
     zmq::context_t context(1);

@@ -1,7 +1,11 @@
 #include "wire/module_server.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cstring>
 #include <exception>
+#include <thread>
 
 #include "wire/protocol.hpp"
 #include "wire/shared_payload.hpp"
@@ -19,14 +23,99 @@ void fill_hello_reply(const ModuleHandler& handler, unsigned version, HelloReply
   for (const std::string& m : handler.models()) reply.add_models(m);
 }
 
+// Drops the rest of a multipart message.
+void drain(zmq::socket_t& socket, bool more) {
+  while (more) {
+    zmq::message_t part;
+    receive_part(socket, part);
+    more = part.more();
+  }
+}
+
+// The ZAP handler (RFC 27) of a CURVE server: accepts the one client key it was given. It runs
+// on its own thread because libzmq asks it while a connection is made, whatever the serving
+// thread is doing.
+class ZapHandler {
+ public:
+  ZapHandler(zmq::context_t& context, const std::string& client_key_z85)
+      : socket_(context, zmq::socket_type::rep) {
+    if (client_key_z85.size() != 40 || !zmq_z85_decode(client_key_, client_key_z85.c_str())) {
+      throw std::invalid_argument("the client's CURVE public key is not 40 Z85 characters");
+    }
+    socket_.set(zmq::sockopt::linger, 0);
+    socket_.bind("inproc://zeromq.zap.01");
+    thread_ = std::thread([this] { run(); });
+  }
+  ~ZapHandler() {
+    stop_ = true;
+    thread_.join();
+  }
+
+ private:
+  void run() {
+    while (!stop_) {
+      zmq::pollitem_t item{socket_.handle(), 0, ZMQ_POLLIN, 0};
+      try {
+        zmq::poll(&item, 1, std::chrono::milliseconds(100));
+        if (!(item.revents & ZMQ_POLLIN)) continue;
+        std::vector<zmq::message_t> parts;
+        bool more = true;
+        while (more) {
+          zmq::message_t part;
+          receive_part(socket_, part);
+          more = part.more();
+          if (parts.size() < 16) parts.push_back(std::move(part));
+        }
+        // version, request id, domain, address, routing id, mechanism, credentials...
+        const bool ok = parts.size() >= 7 && parts[5].to_string_view() == "CURVE" &&
+                        parts[6].size() == 32 && std::memcmp(parts[6].data(), client_key_, 32) == 0;
+        const std::string request_id = parts.size() > 1 ? parts[1].to_string() : "";
+        const std::string replies[] = {"1.0", request_id, ok ? "200" : "400",
+                                       ok ? "OK" : "not the coupler's key", "", ""};
+        for (std::size_t k = 0; k < 6; ++k) {
+          zmq::message_t out(replies[k].data(), replies[k].size());
+          socket_.send(out, k + 1 < 6 ? zmq::send_flags::sndmore : zmq::send_flags::none);
+        }
+      } catch (const zmq::error_t&) {
+        return;  // the context is ending
+      }
+    }
+  }
+
+  zmq::socket_t socket_;
+  std::uint8_t client_key_[32] = {};
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// Whether any array of `message` points into shared memory.
+bool names_shared_memory(const Message& message) {
+  for (const ArrayHeader& h : message.envelope.arrays()) {
+    if (!h.shared_segment().empty()) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& handler,
           const ServeOptions& options) {
-  zmq::socket_t socket(context, zmq::socket_type::rep);
+  std::unique_ptr<ZapHandler> zap;
+  if (!options.curve_secret_key.empty()) zap = std::make_unique<ZapHandler>(context, options.curve_client_key);
+  // ROUTER rather than REP: every message comes with its sender, so the session keeps to one
+  // client and a malformed message is answered without breaking REP's strict alternation.
+  zmq::socket_t socket(context, zmq::socket_type::router);
   socket.set(zmq::sockopt::linger, 0);
+  socket.set(zmq::sockopt::maxmsgsize, options.max_message_bytes);
+  if (zap) {
+    socket.set(zmq::sockopt::curve_server, 1);
+    socket.set(zmq::sockopt::curve_secretkey, options.curve_secret_key);
+    socket.set(zmq::sockopt::zap_domain, "rockcut");
+  }
   socket.bind(endpoint);
   const unsigned version = options.protocol_version ? options.protocol_version : kProtocolVersion;
+  // Shared-memory segments are named by local peers only (wire/shared_payload.hpp).
+  const bool shared_memory_allowed = endpoint.starts_with("ipc://");
 
   Message request;
   Message reply;
@@ -36,33 +125,96 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
   using clock = std::chrono::steady_clock;
   double busy_s = 0.0;   // handling time, reported in every reply's Envelope.busy_s
   double after_s = 0.0;  // the part of it after replying (Envelope.after_reply_s)
+  std::string owner;     // routing id of the client whose Hello opened the session
+  bool initialised = false;
+  const std::string module = handler.name();
   for (;;) {
     spin_until_readable(socket);
-    request.receive(socket);
+    zmq::message_t peer_id;
+    receive_part(socket, peer_id);
+    if (!peer_id.more()) continue;
+    zmq::message_t delimiter;
+    receive_part(socket, delimiter);
+    if (delimiter.size() != 0 || !delimiter.more()) {
+      drain(socket, delimiter.more());  // not a REQ client: nothing to answer
+      continue;
+    }
+    zmq::message_t head;
+    receive_part(socket, head);
     const auto start = clock::now();
     reply.clear();
-    const Envelope::BodyCase body = request.envelope.body_case();
-    if (body == Envelope::kShutdown) {
-      reply.envelope.mutable_ack();
-      reply.send(socket);
-      return 0;
+    const std::string peer = peer_id.to_string();
+    std::string refusal;
+    try {
+      request.receive_body(socket, head);
+    } catch (const ProtocolError& e) {
+      refusal = std::string("malformed request: ") + e.what();
     }
-    if (body == Envelope::kHello) {
-      fill_hello_reply(handler, version, *reply.envelope.mutable_hello_reply());
+    const Envelope::BodyCase body = request.envelope.body_case();
+    const bool from_owner = !owner.empty() && peer == owner;
+    bool shutdown = false;
+    if (!refusal.empty()) {
+      // answered below
+    } else if (!owner.empty() && !from_owner) {
+      refusal = "serves another coupler's session; start a module of your own";
+    } else if (body == Envelope::kHello) {
+      const Hello& hello = request.envelope.hello();
+      if (from_owner) {
+        refusal = "Hello again: the session is open already";
+      } else if (hello.protocol_version() != version) {
+        refusal = "protocol version mismatch: the coupler " + hello.coupler_version().substr(0, 40) +
+                  " speaks protocol " + std::to_string(hello.protocol_version()) + ", " + module +
+                  " " + handler.version() + " speaks protocol " + std::to_string(version) +
+                  "; rebuild both from the same source, or point the scene at a matching executable";
+      } else if (hello.expected_kind() != handler.kind()) {
+        refusal = "the coupler expected a " + std::string(kind_name(hello.expected_kind())) +
+                  ", but " + module + " " + handler.version() + " is a " +
+                  std::string(kind_name(handler.kind()));
+      } else {
+        owner = peer;
+        fill_hello_reply(handler, version, *reply.envelope.mutable_hello_reply());
+      }
+    } else if (owner.empty()) {
+      refusal = "a session starts with Hello";
+    } else if (body == Envelope::kShutdown) {
+      reply.envelope.mutable_ack();
+      shutdown = true;
+    } else if (body == Envelope::kInit && initialised) {
+      refusal = "Init again: a module serves one run; start a new module for another";
+    } else if (!shared_memory_allowed && names_shared_memory(request)) {
+      refusal = "arrays in shared memory are refused on " + endpoint.substr(0, 6) +
+                " (only a peer on this host, over ipc://, may name them)";
     } else {
+      initialised = initialised || body == Envelope::kInit;
       try {
         handler.handle(request, reply);
+        if (reply.envelope.has_init_reply()) {
+          // Connections made from now on get a bound derived from the particle count.
+          const auto n = static_cast<std::int64_t>(
+              std::min<std::uint64_t>(reply.envelope.init_reply().particle_count(), 1ull << 40));
+          socket.set(zmq::sockopt::maxmsgsize,
+                     std::min(options.max_message_bytes,
+                              std::max(kMinMessageBytes, n * kBytesPerParticle)));
+        }
       } catch (const std::exception& e) {
-        reply.clear();
-        Error* error = reply.envelope.mutable_error();
-        error->set_module(handler.name());
-        error->set_message(e.what());
+        refusal = e.what();
       }
+    }
+    if (!refusal.empty()) {
+      reply.clear();
+      Error* error = reply.envelope.mutable_error();
+      error->set_module(module);
+      error->set_message(refusal);
     }
     busy_s += std::chrono::duration<double>(clock::now() - start).count();
     reply.envelope.set_busy_s(busy_s);
     reply.envelope.set_after_reply_s(after_s);
+    send_part(socket, peer_id, zmq::send_flags::sndmore);
+    zmq::message_t empty;
+    send_part(socket, empty, zmq::send_flags::sndmore);
     reply.send(socket);
+    if (shutdown) return 0;
+    if (peer != owner) continue;  // after_reply is the session's work only
     const auto after = clock::now();
     handler.after_reply();
     const double after_reply = std::chrono::duration<double>(clock::now() - after).count();

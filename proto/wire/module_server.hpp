@@ -3,6 +3,7 @@
 // are shared here so every module (built in or someone else's) behaves the same on the wire.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -29,13 +30,32 @@ class ModuleHandler {
   virtual void after_reply() {}
 };
 
+/// The largest ZeroMQ frame a module takes (ZMQ_MAXMSGSIZE): one array of a State of
+/// scene::kMaxParticles particles at up to 32 doubles each (bonds, contacts). A peer announcing
+/// more is disconnected by ZeroMQ before anything is buffered. After Init, connections made later
+/// get kBytesPerParticle per particle (at least kMinMessageBytes, at most this).
+inline constexpr std::int64_t kMaxMessageBytesBeforeInit = std::int64_t{512} << 20;
+inline constexpr std::int64_t kBytesPerParticle = 512;
+inline constexpr std::int64_t kMinMessageBytes = std::int64_t{16} << 20;
+
 struct ServeOptions {
   /// Protocol version announced in the handshake (tests use another value to provoke a mismatch).
   unsigned protocol_version = 0;  // 0: the current kProtocolVersion
+  /// CURVE (wire/curve_keys.hpp): the module's own secret key and the one client public key it
+  /// accepts (Z85). Empty: no authentication or encryption (the default, for loopback).
+  std::string curve_secret_key;
+  std::string curve_client_key;
+  std::int64_t max_message_bytes = kMaxMessageBytesBeforeInit;
 };
 
 /// Binds `endpoint`, serves one session and returns after Shutdown. Returns 0 on a clean session.
 /// Throws zmq::error_t if the endpoint cannot be bound.
+///
+/// The session belongs to the first client whose Hello is accepted (right protocol version and
+/// module kind); every message of any other client, and anything before that Hello, is answered
+/// with an Error and otherwise ignored. A malformed message (frame 0 not an Envelope, array
+/// frames other than announced, a shared-memory segment named over tcp) is answered with an
+/// Error too; so are a second Hello or Init. The module keeps serving its coupler in all cases.
 int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& handler,
           const ServeOptions& options = {});
 

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -48,35 +49,75 @@ struct Mapping {
   std::string name;
   const void* base = nullptr;
   std::size_t size = 0;
+  int fd = -1;                // kept open: every read checks the segment's size (fstat)
+  std::uint64_t last_use = 0;
 };
 
+// Whether `name` follows a SharedPayloadArena's scheme for an array called `array`:
+// "/rockcut.<pid>.<arena>-<clock>.<array>.<turn>.v<version>". Anything else (another program's
+// /dev/shm object, a path) is not mapped.
+bool follows_arena_scheme(const std::string& name, const std::string& array) {
+  constexpr std::string_view kStart = "/rockcut.";
+  if (name.size() > 255 || !name.starts_with(kStart) || array.empty() ||
+      name.find('/', 1) != std::string::npos || array.find('/') != std::string::npos) {
+    return false;
+  }
+  std::size_t k = kStart.size();
+  const std::size_t pid_start = k;
+  while (k < name.size() && name[k] >= '0' && name[k] <= '9') ++k;
+  if (k == pid_start || k >= name.size() || name[k] != '.') return false;
+  const std::size_t v = name.rfind(".v");
+  if (v == std::string::npos || v + 2 == name.size()) return false;
+  for (std::size_t i = v + 2; i < name.size(); ++i) {
+    if (name[i] < '0' || name[i] > '9') return false;
+  }
+  const std::string tail = "." + array + ".";  // then "0" or "1"
+  return v >= tail.size() + 1 && (name[v - 1] == '0' || name[v - 1] == '1') &&
+         name.compare(v - 1 - tail.size(), tail.size(), tail) == 0 && v - 1 - tail.size() > k;
+}
+
+void unmap(Mapping& m) {
+  if (m.base) munmap(const_cast<void*>(m.base), m.size);
+  if (m.fd >= 0) close(m.fd);
+  m = {};
+}
+
 // The reader's mappings, one per segment in turn: a newer version of a segment replaces the
-// older one (the sender unlinked it when the array outgrew it).
+// older one (the sender unlinked it when the array outgrew it). At most kMaxMappings are kept:
+// a peer naming ever new segments costs the least recently read one its mapping.
 class MappingCache {
  public:
-  const Mapping& get(const std::string& name) {
+  static constexpr std::size_t kMaxMappings = 4 * Message::kMaxArrays;
+
+  const Mapping& get(const std::string& name, const std::string& array) {
     std::lock_guard lock(mutex_);
+    if (!follows_arena_scheme(name, array)) {
+      throw ProtocolError("array '" + array + "': " + name.substr(0, 64) +
+                          " is not a rockcut shared-memory segment of that array");
+    }
+    if (!by_slot_.contains(slot_key(name)) && by_slot_.size() >= kMaxMappings) evict_oldest();
     Mapping& m = by_slot_[slot_key(name)];
+    m.last_use = ++uses_;
     if (m.name == name) return m;
-    if (m.base) munmap(const_cast<void*>(m.base), m.size);
-    m = {};
-    const int fd = shm_open(name.c_str(), O_RDONLY, 0);
+    unmap(m);
+    const int fd = shm_open(name.c_str(), O_RDONLY | O_NOFOLLOW, 0);
     if (fd < 0) {
       throw ProtocolError("shared-memory segment " + name + " cannot be opened: " +
                           std::strerror(errno));
     }
     struct stat st {};
-    if (fstat(fd, &st) != 0 || static_cast<std::size_t>(st.st_size) < sizeof(SegmentHeader)) {
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) ||
+        static_cast<std::size_t>(st.st_size) < sizeof(SegmentHeader)) {
       close(fd);
       throw ProtocolError("shared-memory segment " + name + " is truncated");
     }
     void* base = mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_SHARED, fd, 0);
-    close(fd);
     if (base == MAP_FAILED) {
+      close(fd);
       throw ProtocolError("shared-memory segment " + name + " cannot be mapped: " +
                           std::strerror(errno));
     }
-    m = {name, base, static_cast<std::size_t>(st.st_size)};
+    m = {name, base, static_cast<std::size_t>(st.st_size), fd, uses_};
     return m;
   }
 
@@ -86,7 +127,7 @@ class MappingCache {
     const std::string prefix = "/rockcut." + std::to_string(pid) + ".";
     for (auto it = by_slot_.begin(); it != by_slot_.end();) {
       if (it->first.starts_with(prefix)) {
-        if (it->second.base) munmap(const_cast<void*>(it->second.base), it->second.size);
+        unmap(it->second);
         it = by_slot_.erase(it);
       } else {
         ++it;
@@ -95,8 +136,20 @@ class MappingCache {
   }
 
  private:
+  // The least recently read mapping is not one of the message being read (a message has at most
+  // Message::kMaxArrays arrays, a reader holds at most two messages' arrays at once).
+  void evict_oldest() {
+    auto oldest = by_slot_.begin();
+    for (auto it = by_slot_.begin(); it != by_slot_.end(); ++it) {
+      if (it->second.last_use < oldest->second.last_use) oldest = it;
+    }
+    unmap(oldest->second);
+    by_slot_.erase(oldest);
+  }
+
   std::mutex mutex_;
   std::unordered_map<std::string, Mapping> by_slot_;
+  std::uint64_t uses_ = 0;
 };
 
 MappingCache& mappings() {
@@ -196,16 +249,30 @@ std::vector<std::string> SharedPayloadArena::segment_names() const {
 }
 
 std::span<const double> read_shared(const ArrayHeader& header) {
-  const Mapping& m = mappings().get(header.shared_segment());
+  const Mapping& m = mappings().get(header.shared_segment(), header.name());
+  // The size now, not at mapping time: a sender that shrank the segment since would make the
+  // reads below fault (SIGBUS) past its new end.
+  struct stat st {};
+  const std::size_t size =
+      fstat(m.fd, &st) == 0 ? std::min(m.size, static_cast<std::size_t>(st.st_size)) : 0;
   const auto* h = static_cast<const SegmentHeader*>(m.base);
-  const std::uint64_t generation = __atomic_load_n(&h->generation, __ATOMIC_ACQUIRE);
-  const std::size_t n = header.count() * header.components();
-  // The sender's own count of the bytes it wrote must match the header it sent.
-  if (h->magic != kMagic || h->bytes != n * sizeof(double) ||
-      sizeof(SegmentHeader) + n * sizeof(double) > m.size) {
+  if (size < sizeof(SegmentHeader)) {
     throw ProtocolError("array '" + header.name() + "': shared-memory segment " + m.name +
-                        " does not hold " + std::to_string(n) + " doubles");
+                        " was truncated");
   }
+  const std::uint64_t generation = __atomic_load_n(&h->generation, __ATOMIC_ACQUIRE);
+  const std::size_t room = (size - sizeof(SegmentHeader)) / sizeof(double);
+  // Compared by division: count * components may wrap for a count a peer made up.
+  const std::uint64_t count = header.count();
+  const std::uint32_t components = header.components();
+  // The sender's own count of the bytes it wrote must match the header it sent.
+  if (h->magic != kMagic || components == 0 || count > room / components ||
+      h->bytes != count * components * sizeof(double)) {
+    throw ProtocolError("array '" + header.name() + "': shared-memory segment " + m.name +
+                        " does not hold " + std::to_string(count) + " x " +
+                        std::to_string(components) + " doubles");
+  }
+  const std::size_t n = count * components;
   if (generation != header.shared_generation()) {
     throw ProtocolError("array '" + header.name() + "': shared-memory segment " + m.name +
                         " was written again (write " + std::to_string(generation) +

@@ -47,6 +47,12 @@ struct Session {
       }
     });
     client = std::make_unique<ModuleClient>(context, "echo", "inproc://echo", timeout, ClientHooks{});
+    if (options.protocol_version == 0) {
+      Message req, rep;
+      req.envelope.mutable_hello()->set_protocol_version(kProtocolVersion);
+      req.envelope.mutable_hello()->set_expected_kind(MODULE_KIND_FLUID);
+      client->request(req, rep);
+    }
   }
   ~Session() {
     context.shutdown();
@@ -55,9 +61,12 @@ struct Session {
 };
 
 TEST(ClientServer, HandshakeReportsVersionKindAndModels) {
-  Session s(2000ms);
+  ServeOptions options;
+  options.protocol_version = kProtocolVersion;  // no Hello in the fixture
+  Session s(2000ms, options);
   Message req, rep;
   req.envelope.mutable_hello()->set_protocol_version(kProtocolVersion);
+  req.envelope.mutable_hello()->set_expected_kind(MODULE_KIND_FLUID);
   s.client->request(req, rep);
   ASSERT_TRUE(rep.envelope.has_hello_reply());
   EXPECT_EQ(rep.envelope.hello_reply().protocol_version(), kProtocolVersion);
@@ -70,9 +79,54 @@ TEST(ClientServer, ServeOptionsCanAnnounceAnotherVersion) {
   options.protocol_version = 999;
   Session s(2000ms, options);
   Message req, rep;
-  req.envelope.mutable_hello();
+  req.envelope.mutable_hello()->set_protocol_version(999);
+  req.envelope.mutable_hello()->set_expected_kind(MODULE_KIND_FLUID);
   s.client->request(req, rep);
   EXPECT_EQ(rep.envelope.hello_reply().protocol_version(), 999u);
+}
+
+TEST(ClientServer, HelloOfAnotherVersionOrKindIsRefusedAndTheRightOneStillWorks) {
+  ServeOptions options;
+  options.protocol_version = kProtocolVersion;  // no Hello in the fixture
+  Session s(2000ms, options);
+  Message req, rep;
+  req.envelope.mutable_hello()->set_protocol_version(99);
+  req.envelope.mutable_hello()->set_expected_kind(MODULE_KIND_FLUID);
+  EXPECT_THROW(s.client->request(req, rep), ModuleFailure);
+  EXPECT_NE(rep.envelope.error().message().find("protocol version mismatch"), std::string::npos);
+  req.envelope.mutable_hello()->set_protocol_version(kProtocolVersion);
+  req.envelope.mutable_hello()->set_expected_kind(MODULE_KIND_DEM);
+  EXPECT_THROW(s.client->request(req, rep), ModuleFailure);
+  EXPECT_NE(rep.envelope.error().message().find("expected a dem_module"), std::string::npos);
+  req.clear();
+  req.envelope.mutable_fluid_step()->set_dt_s(1.0);  // before any accepted Hello
+  EXPECT_THROW(s.client->request(req, rep), ModuleFailure);
+  req.clear();
+  req.envelope.mutable_hello()->set_protocol_version(kProtocolVersion);
+  req.envelope.mutable_hello()->set_expected_kind(MODULE_KIND_FLUID);
+  s.client->request(req, rep);
+  EXPECT_TRUE(rep.envelope.has_hello_reply());
+  EXPECT_THROW(s.client->request(req, rep), ModuleFailure);  // Hello again
+  EXPECT_NE(rep.envelope.error().message().find("Hello again"), std::string::npos);
+}
+
+TEST(ClientServer, ASecondClientIsRefusedAndTheOwnerKeepsItsSession) {
+  Session s(2000ms);
+  ModuleClient intruder(s.context, "intruder", "inproc://echo", 2000ms, ClientHooks{});
+  Message req, rep;
+  req.envelope.mutable_hello()->set_protocol_version(kProtocolVersion);
+  req.envelope.mutable_hello()->set_expected_kind(MODULE_KIND_FLUID);
+  EXPECT_THROW(intruder.request(req, rep), ModuleFailure);
+  EXPECT_NE(rep.envelope.error().message().find("another coupler"), std::string::npos);
+  req.clear();
+  req.envelope.mutable_shutdown();
+  EXPECT_THROW(intruder.request(req, rep), ModuleFailure);
+  req.clear();
+  std::vector<double> x = {1, 2};
+  req.envelope.mutable_fluid_step()->set_dt_s(1.0);
+  req.add_array("position", x, 2);
+  s.client->request(req, rep);
+  EXPECT_EQ(rep.array("force", 2)[1], 2.0);
 }
 
 TEST(ClientServer, ArraysGoThereAndBackAndAfterReplyRuns) {
@@ -88,7 +142,7 @@ TEST(ClientServer, ArraysGoThereAndBackAndAfterReplyRuns) {
   req.envelope.mutable_shutdown();
   s.client->request(req, rep);
   EXPECT_TRUE(rep.envelope.has_ack());
-  EXPECT_EQ(s.handler.after_reply_calls.load(), 1);  // after the step; Shutdown ends the session
+  EXPECT_EQ(s.handler.after_reply_calls.load(), 2);  // after Hello and the step; not Shutdown
 }
 
 TEST(ClientServer, HandlerExceptionBecomesModuleFailureNamingTheModule) {

@@ -94,6 +94,9 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--no-checkpoints", options.no_checkpoints,
                 "Write no checkpoint at all; SIGINT and SIGTERM then stop at once");
+  run->add_flag("--overwrite", options.overwrite,
+                "Replace the output of an earlier run in OUT (without it such a directory is "
+                "refused, and the earlier run stays whole)");
   run->add_flag("--resume", options.resume_if_possible,
                 "If OUT holds a checkpoint, continue from it (the scene may change only the end "
                 "time, output cadence and checkpoint settings); else start afresh. The same "

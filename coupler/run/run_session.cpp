@@ -177,6 +177,13 @@ int run_scene(const RunOptions& options_in) {
         return kExitBadInput;
       }
     }
+    // A fresh run would replace an earlier run's output at its first step: only when asked to.
+    if (!checkpoint && !options.overwrite && fs::exists(options.out_dir / "run.h5")) {
+      std::cerr << "error: " << options.out_dir.string()
+                << " holds the output of an earlier run (run.h5): give --overwrite to replace it, "
+                   "use coupler resume to continue it, or choose another --out\n";
+      return kExitBadInput;
+    }
   } catch (const scene::SceneError& e) {
     std::cerr << e.what() << (std::string(e.what()).ends_with('\n') ? "" : "\n");
     return kExitBadInput;

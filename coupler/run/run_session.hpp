@@ -63,6 +63,8 @@ struct RunOptions {
   bool resume = false;
   /// `coupler run CASE --resume`: as `resume` when out_dir holds a checkpoint, else a fresh run.
   bool resume_if_possible = false;
+  /// A fresh run may replace the output of an earlier run in out_dir (else it is refused).
+  bool overwrite = false;
 };
 
 /// Runs the scene and returns the exit code. Messages go to stderr, the result lines to stdout.

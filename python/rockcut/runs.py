@@ -60,8 +60,9 @@ def side_by_side(jobs):
 
 
 def command(scene, out, sets=(), coupler_path=None, transport=None):
-    """The argv of `coupler run SCENE --out OUT [--transport T] --set S ...`."""
-    argv = [coupler(coupler_path), "run", scene, "--out", out]
+    """The argv of `coupler run SCENE --out OUT --overwrite [--transport T] --set S ...`: the
+    tool's runs replace what an earlier run of theirs left in OUT."""
+    argv = [coupler(coupler_path), "run", scene, "--out", out, "--overwrite"]
     if transport:
         argv += ["--transport", transport]
     for s in sets:

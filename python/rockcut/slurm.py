@@ -118,7 +118,7 @@ def job_script(out_dir, coupler, case, n_tasks, time_limit, cpus_per_task, parti
         'eval "set -- $args"',
         'mkdir -p "$sweep/$run"',
         'echo "\\$ $coupler run $case --out $sweep/$run --resume $args" >> "$sweep/$run/log.txt"',
-        '"$coupler" run "$case" --out "$sweep/$run" --resume "$@" >> "$sweep/$run/log.txt" 2>&1 &',
+        '"$coupler" run "$case" --out "$sweep/$run" --resume --overwrite "$@" >> "$sweep/$run/log.txt" 2>&1 &',
         "pid=$!",
         'wait "$pid"',
         "code=$?",

@@ -38,8 +38,13 @@ TEST(OutDir, ASecondRunIntoTheSameDirectoryIsRefusedNamingTheFirst) {
   ASSERT_EQ(wait_exit(a.pid, 120s).value_or(-1), 0);
   const H5Reader h5(out / "run.h5");  // the first run's output is whole
   EXPECT_FALSE(h5.doubles("/timeseries/time_s").empty());
-  // Once it has ended, the directory is free again.
-  EXPECT_EQ(run(second, dir, "third", nullptr, &err), 0) << err;
+  // Once it has ended, the directory is free again, and its run is replaced only when asked.
+  EXPECT_EQ(run(second, dir, "third", nullptr, &err), 2);
+  EXPECT_NE(err.find("holds the output of an earlier run (run.h5): give --overwrite"),
+            std::string::npos)
+      << err;
+  second.push_back("--overwrite");
+  EXPECT_EQ(run(second, dir, "fourth", nullptr, &err), 0) << err;
 }
 
 TEST(OutDir, AFreshRunDropsTheSummaryAndCheckpointsOfAnEarlierOne) {
@@ -49,7 +54,7 @@ TEST(OutDir, AFreshRunDropsTheSummaryAndCheckpointsOfAnEarlierOne) {
   ASSERT_TRUE(fs::exists(earlier.out / "summary.json"));
   ASSERT_TRUE(fs::exists(earlier.out / "checkpoints"));
   std::vector<std::string> argv = {bin("coupler"), "run", kScene, "--out", earlier.out.string(),
-                                   "--set", "time.end_time_s=0.05"};
+                                   "--overwrite", "--set", "time.end_time_s=0.05"};
   const Spawned s = spawn(argv, dir, "fresh");
   KillOnExit guard{s.pid};
   // Killed early: what is left must not pair the earlier summary with the new run.h5.
@@ -69,7 +74,9 @@ TEST(OutDir, ALinkWhereRunH5GoesIsNotFollowed) {
   const fs::path victim = dir / "precious.txt";
   std::ofstream(victim) << "keep me\n";
   fs::create_symlink(victim, out / "run.h5");
-  const CouplerRun r = run_coupler(kScene, kShort, dir, 120000ms);
+  std::vector<std::string> args = kShort;
+  args.push_back("--overwrite");  // something is where run.h5 goes
+  const CouplerRun r = run_coupler(kScene, args, dir, 120000ms);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_file(victim), "keep me\n");
   EXPECT_FALSE(fs::is_symlink(out / "run.h5"));

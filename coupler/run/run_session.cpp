@@ -298,7 +298,7 @@ void RunSession::start_modules() {
 void RunSession::init_modules() {
   request_.clear();
   // The scene's directory bounds what a module reads (the DEM's packing file).
-  const std::string scene_dir = fs::absolute(loaded_.path.parent_path()).lexically_normal().string();
+  const std::string scene_dir = fs::absolute(loaded_.path).parent_path().lexically_normal().string();
   *request_.envelope.mutable_init()->mutable_scene() = scene_;
   request_.envelope.mutable_init()->set_scene_dir(scene_dir);
   dem_.link->request(request_, reply_);

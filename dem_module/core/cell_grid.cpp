@@ -11,10 +11,16 @@ namespace {
 constexpr long kMaxCells = 1L << 24;
 }  // namespace
 
+// The cell index along one axis, clamped in floating point before the conversion: a coordinate
+// far outside the grid, or not finite (a run about to trip the NaN guard), lands in an edge cell
+// instead of overflowing the int.
+static int axis_cell(double f, int cells) {
+  if (f >= static_cast<double>(cells)) return cells - 1;
+  return f >= 0.0 ? static_cast<int>(f) : 0;  // NaN compares false: cell 0
+}
+
 int CellGrid::cell_of(double x, double y) const {
-  const int cx = std::clamp(static_cast<int>((x - x0_) * inv_size_), 0, nx_ - 1);
-  const int cy = std::clamp(static_cast<int>((y - y0_) * inv_size_), 0, ny_ - 1);
-  return cy * nx_ + cx;
+  return axis_cell((y - y0_) * inv_size_, ny_) * nx_ + axis_cell((x - x0_) * inv_size_, nx_);
 }
 
 void CellGrid::build(std::span<const double> position, double cell_size_m) {
@@ -23,16 +29,19 @@ void CellGrid::build(std::span<const double> position, double cell_size_m) {
   double xmin = std::numeric_limits<double>::max(), ymin = xmin;
   double xmax = std::numeric_limits<double>::lowest(), ymax = xmax;
   for (std::size_t i = 0; i < n; ++i) {
-    xmin = std::min(xmin, position[2 * i]);
-    xmax = std::max(xmax, position[2 * i]);
-    ymin = std::min(ymin, position[2 * i + 1]);
-    ymax = std::max(ymax, position[2 * i + 1]);
+    const double x = position[2 * i], y = position[2 * i + 1];
+    if (!std::isfinite(x) || !std::isfinite(y)) continue;  // binned at an edge (cell_of)
+    xmin = std::min(xmin, x);
+    xmax = std::max(xmax, x);
+    ymin = std::min(ymin, y);
+    ymax = std::max(ymax, y);
   }
-  if (n == 0) xmin = xmax = ymin = ymax = 0;
+  if (xmin > xmax) xmin = xmax = ymin = ymax = 0;  // no particle, or none finite
   double size = cell_size_m;
+  // In doubles: extents of discs flung very far must not overflow an integer on the way.
+  const double ex = std::min(xmax - xmin, 1e300), ey = std::min(ymax - ymin, 1e300);
   auto count = [&](double s) {
-    return std::pair<long, long>(static_cast<long>((xmax - xmin) / s) + 1,
-                                 static_cast<long>((ymax - ymin) / s) + 1);
+    return std::pair<double, double>(std::floor(ex / s) + 1, std::floor(ey / s) + 1);
   };
   while (count(size).first * count(size).second > kMaxCells) size *= 2;  // never smaller: pairs stay found
   x0_ = xmin;

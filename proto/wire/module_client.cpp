@@ -41,7 +41,7 @@ void ModuleClient::send(Message& request) {
 
 void ModuleClient::receive(Message& reply, bool interruptible) {
   using clock = std::chrono::steady_clock;
-  const auto deadline = clock::now() + timeout_;
+  auto deadline = clock::now() + timeout_;
   // Checked before waiting too: fast replies would otherwise never leave time to notice a signal.
   if (interruptible && hooks_.interrupted && hooks_.interrupted()) throw Interrupted();
   spin_until_readable(socket_);
@@ -49,6 +49,7 @@ void ModuleClient::receive(Message& reply, bool interruptible) {
     zmq::pollitem_t item{socket_.handle(), 0, ZMQ_POLLIN, 0};
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - clock::now());
     const auto slice = std::clamp(left, std::chrono::milliseconds(0), kPollSlice);
+    const auto before = clock::now();
     try {
       zmq::poll(&item, 1, slice);
     } catch (const zmq::error_t& e) {
@@ -56,11 +57,23 @@ void ModuleClient::receive(Message& reply, bool interruptible) {
       item.revents = 0;  // a signal arrived: look at the hooks below
     }
     if (item.revents & ZMQ_POLLIN) break;
+    // A wait far longer than asked for is time the coupler itself was not running (Ctrl-Z, a
+    // laptop asleep): it does not count against the module.
+    const auto overshoot = clock::now() - before - slice;
+    if (overshoot > std::chrono::seconds(1)) deadline += overshoot;
     if (interruptible && hooks_.interrupted && hooks_.interrupted()) throw Interrupted();
     if (hooks_.dead) {
       if (auto why = hooks_.dead()) throw ModuleFailure(name_, "the process " + *why);
     }
     if (clock::now() >= deadline) {
+      // A reply that arrived meanwhile is read, not lost to the deadline.
+      zmq::pollitem_t last{socket_.handle(), 0, ZMQ_POLLIN, 0};
+      try {
+        zmq::poll(&last, 1, std::chrono::milliseconds(0));
+      } catch (const zmq::error_t&) {
+        last.revents = 0;
+      }
+      if (last.revents & ZMQ_POLLIN) break;
       throw ModuleFailure(name_, "stopped answering (no reply within " +
                                      std::to_string(timeout_.count() / 1000.0).substr(0, 6) +
                                      " s, the coupling timeout)");

@@ -110,6 +110,21 @@ TEST(OutDir, AFileSizeLimitStopsTheRunWithExitCode5AndASummary) {
   EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;
 }
 
+// A scene named by a bare file name in the working directory, with a title that is not UTF-8:
+// it runs, and summary.json stays JSON (the bad byte becomes U+FFFD).
+TEST(OutDir, ABareSceneNameAndALatin1TitleRun) {
+  const fs::path dir = fresh_dir("out_dir_bare");
+  std::ofstream(dir / "s.pbtxt") << "base: \"" << kScene << "\"\ntitle: \"caf\xe9\"\n";
+  std::string err;
+  const int code = run({"/bin/sh", "-c",
+                        "cd " + dir.string() + " && exec " + bin("coupler") +
+                            " run s.pbtxt --out out --set time.end_time_s=0.0005"},
+                       dir, "bare", nullptr, &err);
+  ASSERT_EQ(code, 0) << err;
+  const std::string summary = read_file(dir / "out" / "summary.json");
+  EXPECT_NE(summary.find("\"title\": \"caf\\ufffd\""), std::string::npos) << summary;
+}
+
 // A coupler killed by SIGKILL cannot remove its private socket directory: the next run does.
 TEST(OutDir, TheSocketDirectoryOfAKilledCouplerIsRemovedByTheNextRun) {
   const fs::path dir = fresh_dir("out_dir_orphan");

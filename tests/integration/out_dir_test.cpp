@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <thread>
 
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
@@ -123,6 +124,22 @@ TEST(OutDir, ABareSceneNameAndALatin1TitleRun) {
   ASSERT_EQ(code, 0) << err;
   const std::string summary = read_file(dir / "out" / "summary.json");
   EXPECT_NE(summary.find("\"title\": \"caf\\ufffd\""), std::string::npos) << summary;
+}
+
+// A coupler stopped (Ctrl-Z, a laptop asleep) for longer than coupling.timeout_s does not blame
+// its modules for the time it was not running.
+TEST(Suspend, ACouplerStoppedLongerThanTheTimeoutCarriesOn) {
+  const fs::path dir = fresh_dir("suspend");
+  std::vector<std::string> argv = {bin("coupler"), "run", source("cases/cutting/saturated_reduced.pbtxt"),
+                                   "--out", (dir / "out").string(), "--set", "coupling.timeout_s=1",
+                                   "--set", "time.end_time_s=0.004"};
+  const Spawned s = spawn(argv, dir, "suspended");
+  KillOnExit guard{s.pid};
+  while (!fs::exists(dir / "out" / "run.h5")) ASSERT_FALSE(wait_exit(s.pid, 5ms).has_value());
+  kill(s.pid, SIGSTOP);
+  std::this_thread::sleep_for(3s);
+  kill(s.pid, SIGCONT);
+  EXPECT_EQ(wait_exit(s.pid, 120s).value_or(-1), 0) << read_file(s.err_file);
 }
 
 // A coupler killed by SIGKILL cannot remove its private socket directory: the next run does.

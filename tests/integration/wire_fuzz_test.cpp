@@ -72,6 +72,9 @@ struct Client {
   explicit Client(const std::string& endpoint, const wire::CurveKeyPair* own = nullptr,
                   const std::string& server_key = "") {
     socket.set(zmq::sockopt::linger, 0);
+    // A DEALER blocks in send while it has no peer, which a refused CURVE handshake can leave it
+    // without: give up after a while instead of hanging the test.
+    socket.set(zmq::sockopt::sndtimeo, 2000);
     if (own) {
       socket.set(zmq::sockopt::curve_serverkey, server_key);
       socket.set(zmq::sockopt::curve_publickey, own->public_key);
@@ -86,10 +89,12 @@ struct Client {
       socket.send(m, k + 1 < frames.size() ? zmq::send_flags::sndmore : zmq::send_flags::none);
     }
   }
-  void send(Message& message) {
+  /// False if the message could not be handed to the socket (no peer within the send timeout).
+  bool send(Message& message) {
     zmq::message_t empty;
-    socket.send(empty, zmq::send_flags::sndmore);
+    if (!socket.send(empty, zmq::send_flags::sndmore)) return false;
     message.send(socket);
+    return true;
   }
   // The reply, or nothing within `timeout`.
   std::optional<Message> receive(std::chrono::milliseconds timeout = 5000ms) {
@@ -104,7 +109,7 @@ struct Client {
     return reply;
   }
   std::optional<Message> request(Message& message, std::chrono::milliseconds timeout = 5000ms) {
-    send(message);
+    if (!send(message)) return std::nullopt;
     return receive(timeout);
   }
 };

@@ -6,33 +6,27 @@
 #include <utility>
 #include <vector>
 
+#include "output/text_lines.hpp"
 #include "state/state_archive.hpp"
 
 namespace rockcut::coupler {
 
 inline void save_named_values(state::StateArchive& a, const std::string& key,
                               const std::vector<std::pair<std::string, double>>& values) {
-  std::string names;
+  std::vector<std::string> names;
   std::vector<double> numbers;
   for (const auto& [name, value] : values) {
-    names += name + "\n";
+    names.push_back(name);
     numbers.push_back(value);
   }
-  a.put_text(key, names);
+  a.put_text(key, join_lines(names));
   a.put(key, std::move(numbers));
 }
 
 inline std::vector<std::pair<std::string, double>> load_named_values(const state::StateArchive& a,
                                                                      const std::string& key) {
-  const std::string& names = a.text(key);
   std::vector<std::pair<std::string, double>> out;
-  std::size_t start = 0;
-  while (start < names.size()) {
-    const std::size_t end = names.find('\n', start);
-    if (end == std::string::npos) break;
-    out.emplace_back(names.substr(start, end - start), 0.0);
-    start = end + 1;
-  }
+  for (std::string& name : split_lines(a.text(key))) out.emplace_back(std::move(name), 0.0);
   const auto numbers = a.values(key, out.size());
   for (std::size_t k = 0; k < out.size(); ++k) out[k].second = numbers[k];
   return out;

@@ -89,6 +89,126 @@ std::vector<std::string> scene_differences(const rockcut::Scene& saved, const ro
   return out;
 }
 
+void save_extent(state::StateArchive& a, const RunFileExtent& e) {
+  a.put("output_extent", std::vector<double>{static_cast<double>(e.timeseries_rows),
+                                             static_cast<double>(e.frames)});
+  a.put_text("timeseries_columns", join_lines(e.timeseries_columns));
+  std::vector<std::string> tables;
+  for (const auto& [table, rows] : e.table_rows) {
+    tables.push_back(table);
+    a.put_scalar("table_rows:" + table, static_cast<double>(rows));
+    a.put_text("table_columns:" + table, join_lines(e.table_columns.at(table)));
+  }
+  a.put_text("tables", join_lines(tables));
+}
+
+RunFileExtent load_extent(const state::StateArchive& a) {
+  RunFileExtent e;
+  const auto counts = a.values("output_extent", 2);
+  e.timeseries_rows = static_cast<std::uint64_t>(counts[0]);
+  e.frames = static_cast<std::uint64_t>(counts[1]);
+  e.timeseries_columns = split_lines(a.text("timeseries_columns"));
+  for (const std::string& table : split_lines(a.text("tables"))) {
+    e.table_rows[table] = a.scalar_as<std::uint64_t>("table_rows:" + table);
+    e.table_columns[table] = split_lines(a.text("table_columns:" + table));
+  }
+  return e;
+}
+
+namespace {
+
+// The scene a run continues with: the checkpoint's own (`coupler resume`) or the named file's
+// (`coupler run --resume`), with the --set overrides.
+scene::LoadedScene resumed_scene(const RunOptions& options, const Checkpoint& c,
+                                 const fs::path& file) {
+  scene::LoadedScene loaded;
+  if (options.resume) {
+    loaded = scene::parse_scene(c.scene_text, file.string() + " (its scene)", options.overrides);
+    loaded.path = c.scene_path;
+    std::vector<std::string> all = c.overrides;
+    all.insert(all.end(), options.overrides.begin(), options.overrides.end());
+    loaded.overrides = all;
+  } else {
+    loaded = scene::load_scene(options.scene_path, options.overrides);
+  }
+  make_paths_absolute(loaded);
+  return loaded;
+}
+
+// Why checkpoint `c` cannot continue a run of `now` (empty: it can); prints allowed changes.
+std::string refuse_reason(const Checkpoint& c, const scene::LoadedScene& now) {
+  if (c.rockcut_version != ROCKCUT_VERSION || c.protocol_version != wire::kProtocolVersion) {
+    return "written by rockcut " + c.rockcut_version + " (protocol " +
+           std::to_string(c.protocol_version) + "); this is rockcut " ROCKCUT_VERSION +
+           std::string(" (protocol ") + std::to_string(wire::kProtocolVersion) +
+           "): a run resumes only with the program that wrote its checkpoint";
+  }
+  scene::LoadedScene saved;
+  try {
+    saved = scene::parse_scene(c.scene_text, "checkpoint scene");
+  } catch (const scene::SceneError& e) {
+    return std::string("its scene no longer validates: ") + e.what();
+  }
+  std::vector<std::string> allowed;
+  const std::vector<std::string> differ = scene_differences(saved.scene, now.scene, &allowed);
+  if (!differ.empty()) {
+    std::string reason = "the scene differs in what can change the physics:";
+    for (const std::string& d : differ) reason += "\n  " + d;
+    return reason + "\n(a resumed run may change only: " + [] {
+      std::string list;
+      for (const std::string& f : resume_allowed_fields()) list += (list.empty() ? "" : ", ") + f;
+      return list;
+    }() + ")";
+  }
+  for (const std::string& a : allowed) std::fprintf(stderr, "resume     changed %s\n", a.c_str());
+  return "";
+}
+
+}  // namespace
+
+int choose_checkpoint(const RunOptions& options, scene::LoadedScene& loaded,
+                      std::optional<Checkpoint>& checkpoint) {
+  const fs::path dir = options.out_dir / "checkpoints";
+  const std::vector<fs::path> files = list_checkpoints(dir);
+  if (files.empty() && options.resume) {
+    std::cerr << options.out_dir.string() << ": no checkpoint to resume from (" << dir.string()
+              << " holds none)\n";
+    return kExitBadInput;
+  }
+  bool damaged_only = true;  // a refused scene or version holds for the older ones too
+  for (std::size_t k = 0; k < files.size() && !checkpoint && damaged_only; ++k) {
+    std::string reason;
+    try {
+      const auto read_start = clock_type::now();
+      Checkpoint c = read_checkpoint(files[k]);
+      const double read_s = std::chrono::duration<double>(clock_type::now() - read_start).count();
+      scene::LoadedScene candidate = resumed_scene(options, c, files[k]);
+      reason = refuse_reason(c, candidate);
+      damaged_only = reason.empty();
+      if (reason.empty()) {
+        checkpoint = std::move(c);
+        loaded = std::move(candidate);
+        std::fprintf(stderr, "resume     from %s (step %llu, t = %.6g s; read in %.3g s)\n",
+                     files[k].c_str(), static_cast<unsigned long long>(checkpoint->step),
+                     checkpoint->time_s, read_s);
+      }
+    } catch (const CheckpointError& e) {
+      reason = e.what();
+    }
+    if (!reason.empty()) {
+      std::fprintf(stderr, "%s: refused: %s\n", files[k].c_str(), reason.c_str());
+      if (k + 1 < files.size() && damaged_only) {
+        std::fprintf(stderr, "resume     falling back to %s\n", files[k + 1].c_str());
+      }
+    }
+  }
+  if (!checkpoint && !files.empty()) {
+    std::cerr << options.out_dir.string() << ": no usable checkpoint; nothing in it was changed\n";
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
 void RunSession::save_state(state::StateArchive& a) const {
   a.put("clock", std::vector<double>{time_s_, static_cast<double>(step_),
                                      static_cast<double>(next_series_step_),
@@ -110,17 +230,7 @@ void RunSession::save_state(state::StateArchive& a) const {
   a.put_text("final_fields", join_lines(names));
   cutting_->save_state(a);
   calibration_->save_state(a);
-  const RunFileExtent e = run_file_->extent();
-  a.put("output_extent", std::vector<double>{static_cast<double>(e.timeseries_rows),
-                                             static_cast<double>(e.frames)});
-  a.put_text("timeseries_columns", join_lines(e.timeseries_columns));
-  std::vector<std::string> tables;
-  for (const auto& [table, rows] : e.table_rows) {
-    tables.push_back(table);
-    a.put_scalar("table_rows:" + table, static_cast<double>(rows));
-    a.put_text("table_columns:" + table, join_lines(e.table_columns.at(table)));
-  }
-  a.put_text("tables", join_lines(tables));
+  save_extent(a, run_file_->extent());
 }
 
 void RunSession::load_state(const state::StateArchive& a) {

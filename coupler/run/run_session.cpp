@@ -1,20 +1,14 @@
 #include "run/run_session.hpp"
 
-#include <signal.h>
 #include <stdlib.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 #include "run/energy_budget.hpp"
 #include "run/expected_error.hpp"
-#include "output/text_lines.hpp"
+#include "run/ipc_directory.hpp"
 #include "run/out_dir_lock.hpp"
 #include "run/reply_checks.hpp"
 #include "run/signals.hpp"
@@ -43,25 +37,6 @@ const std::vector<std::string> kDefaultFrameFields = {"position", "velocity", "r
 
 }  // namespace
 
-namespace {
-
-// The private socket directories of couplers that were killed (SIGKILL leaves no chance to clean
-// up): this user's rockcut-XXXXXX directories in `base` whose coupler.pid names a process that is
-// gone.
-void remove_orphaned_ipc_directories(const fs::path& base) {
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(base, ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("rockcut-", 0) != 0 || name.size() != 14 || !entry.is_directory(ec)) continue;
-    struct stat info {};
-    if (::lstat(entry.path().c_str(), &info) != 0 || info.st_uid != ::getuid()) continue;
-    std::ifstream pid_file(entry.path() / "coupler.pid");
-    long pid = 0;
-    if (!(pid_file >> pid) || pid <= 0) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
-  }
-}
-
 // A packing file named in the scene is relative to the scene file; the DEM gets it absolute.
 void make_paths_absolute(scene::LoadedScene& loaded) {
   if (!loaded.scene.dem().has_packing_file()) return;
@@ -71,55 +46,6 @@ void make_paths_absolute(scene::LoadedScene& loaded) {
         fs::absolute(loaded.path.parent_path() / p).lexically_normal().string());
   }
 }
-
-// The scene a run continues with: the checkpoint's own (`coupler resume`) or the named file's
-// (`coupler run --resume`), with the --set overrides.
-scene::LoadedScene resumed_scene(const RunOptions& options, const Checkpoint& c,
-                                 const fs::path& file) {
-  scene::LoadedScene loaded;
-  if (options.resume) {
-    loaded = scene::parse_scene(c.scene_text, file.string() + " (its scene)", options.overrides);
-    loaded.path = c.scene_path;
-    std::vector<std::string> all = c.overrides;
-    all.insert(all.end(), options.overrides.begin(), options.overrides.end());
-    loaded.overrides = all;
-  } else {
-    loaded = scene::load_scene(options.scene_path, options.overrides);
-  }
-  make_paths_absolute(loaded);
-  return loaded;
-}
-
-// Why checkpoint `c` cannot continue a run of `now` (empty: it can); prints allowed changes.
-std::string refuse_reason(const Checkpoint& c, const scene::LoadedScene& now) {
-  if (c.rockcut_version != ROCKCUT_VERSION || c.protocol_version != wire::kProtocolVersion) {
-    return "written by rockcut " + c.rockcut_version + " (protocol " +
-           std::to_string(c.protocol_version) + "); this is rockcut " ROCKCUT_VERSION +
-           std::string(" (protocol ") + std::to_string(wire::kProtocolVersion) +
-           "): a run resumes only with the program that wrote its checkpoint";
-  }
-  scene::LoadedScene saved;
-  try {
-    saved = scene::parse_scene(c.scene_text, "checkpoint scene");
-  } catch (const scene::SceneError& e) {
-    return std::string("its scene no longer validates: ") + e.what();
-  }
-  std::vector<std::string> allowed;
-  const std::vector<std::string> differ = scene_differences(saved.scene, now.scene, &allowed);
-  if (!differ.empty()) {
-    std::string reason = "the scene differs in what can change the physics:";
-    for (const std::string& d : differ) reason += "\n  " + d;
-    return reason + "\n(a resumed run may change only: " + [] {
-      std::string list;
-      for (const std::string& f : resume_allowed_fields()) list += (list.empty() ? "" : ", ") + f;
-      return list;
-    }() + ")";
-  }
-  for (const std::string& a : allowed) std::fprintf(stderr, "resume     changed %s\n", a.c_str());
-  return "";
-}
-
-}  // namespace
 
 int run_scene(const RunOptions& options_in) {
   RunOptions options = options_in;
@@ -136,45 +62,8 @@ int run_scene(const RunOptions& options_in) {
       return kExitBadInput;
     }
     if (options.resume || options.resume_if_possible) {
-      const fs::path dir = options.out_dir / "checkpoints";
-      const std::vector<fs::path> files = list_checkpoints(dir);
-      if (files.empty() && options.resume) {
-        std::cerr << options.out_dir.string() << ": no checkpoint to resume from (" << dir.string()
-                  << " holds none)\n";
-        return kExitBadInput;
-      }
-      bool damaged_only = true;  // a refused scene or version holds for the older ones too
-      for (std::size_t k = 0; k < files.size() && !checkpoint && damaged_only; ++k) {
-        std::string reason;
-        try {
-          const auto read_start = std::chrono::steady_clock::now();
-          Checkpoint c = read_checkpoint(files[k]);
-          const double read_s =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
-          scene::LoadedScene candidate = resumed_scene(options, c, files[k]);
-          reason = refuse_reason(c, candidate);
-          damaged_only = reason.empty();
-          if (reason.empty()) {
-            checkpoint = std::move(c);
-            loaded = std::move(candidate);
-            std::fprintf(stderr, "resume     from %s (step %llu, t = %.6g s; read in %.3g s)\n",
-                         files[k].c_str(), static_cast<unsigned long long>(checkpoint->step),
-                         checkpoint->time_s, read_s);
-          }
-        } catch (const CheckpointError& e) {
-          reason = e.what();
-        }
-        if (!reason.empty()) {
-          std::fprintf(stderr, "%s: refused: %s\n", files[k].c_str(), reason.c_str());
-          if (k + 1 < files.size() && damaged_only) {
-            std::fprintf(stderr, "resume     falling back to %s\n", files[k + 1].c_str());
-          }
-        }
-      }
-      if (!checkpoint && !files.empty()) {
-        std::cerr << options.out_dir.string()
-                  << ": no usable checkpoint; nothing in it was changed\n";
-        return kExitBadInput;
+      if (const int code = choose_checkpoint(options, loaded, checkpoint); code != kExitOk) {
+        return code;
       }
     }
     // A fresh run would replace an earlier run's output at its first step: only when asked to.
@@ -230,23 +119,7 @@ fs::path RunSession::module_executable(const std::string& from_scene, const char
 
 void RunSession::start_modules() {
   context_.emplace(1);
-  if (options_.transport == Transport::ipc) {
-    // A private directory (mkdtemp makes it 0700) keeps other users off the sockets. A socket's
-    // path must fit sockaddr_un (108 bytes): a long TMPDIR gives way to /tmp.
-    constexpr std::size_t kMaxSocketPath = 100;
-    fs::path base = fs::temp_directory_path();
-    if ((base / "rockcut-XXXXXX" / "fluid.sock").string().size() > kMaxSocketPath) base = "/tmp";
-    remove_orphaned_ipc_directories(base);
-    std::string templ = (base / "rockcut-XXXXXX").string();
-    if (!mkdtemp(templ.data())) {
-      throw std::runtime_error("cannot create a private directory for the module sockets in " +
-                               base.string() + ": " + std::strerror(errno) +
-                               " (set TMPDIR to a writable directory)");
-    }
-    ipc_dir_ = templ;
-    // Who owns it: a coupler killed by SIGKILL cannot remove it, the next run does.
-    std::ofstream(ipc_dir_ / "coupler.pid") << getpid() << "\n";
-  }
+  if (options_.transport == Transport::ipc) ipc_dir_ = make_private_ipc_directory();
   const auto timeout = std::chrono::milliseconds(
       static_cast<long long>(scene_.coupling().timeout_s() * 1000.0));
   auto spec_for = [&](wire::ModuleKind kind, const std::string& exe_from_scene, const char* exe,
@@ -412,16 +285,7 @@ void RunSession::open_output() {
   }
   if (resume_from_) {
     // Cut back to what the checkpoint recorded: rows and frames after it are written again.
-    const state::StateArchive& c = resume_from_->parts.at("coupler");
-    RunFileExtent extent;
-    const auto counts = c.values("output_extent", 2);
-    extent.timeseries_rows = static_cast<std::uint64_t>(counts[0]);
-    extent.frames = static_cast<std::uint64_t>(counts[1]);
-    extent.timeseries_columns = split_lines(c.text("timeseries_columns"));
-    for (const std::string& table : split_lines(c.text("tables"))) {
-      extent.table_rows[table] = c.scalar_as<std::uint64_t>("table_rows:" + table);
-      extent.table_columns[table] = split_lines(c.text("table_columns:" + table));
-    }
+    const RunFileExtent extent = load_extent(resume_from_->parts.at("coupler"));
     std::vector<std::string> field_order = dem_frame_fields_;
     field_order.insert(field_order.end(), fluid_frame_fields_.begin(), fluid_frame_fields_.end());
     run_file_ = RunFile::resume(options_.out_dir, extent, field_order, attributes);

@@ -77,6 +77,18 @@ const std::vector<std::string>& resume_allowed_fields();
 /// the same physics); the allowed differences go into `allowed` as "path: old -> new".
 std::vector<std::string> scene_differences(const rockcut::Scene& saved, const rockcut::Scene& now,
                                            std::vector<std::string>* allowed);
+/// `coupler resume` / `coupler run --resume` (run_checkpoint.cpp): the newest checkpoint of
+/// options.out_dir that is whole, of this version and of this scene, falling back past damaged
+/// ones, into `checkpoint`, with the scene the run continues with into `loaded`. Returns
+/// kExitOk, or kExitBadInput after saying why no checkpoint can be used (`checkpoint` stays empty
+/// and nothing in out_dir is changed). With resume_if_possible and no checkpoint at all, kExitOk.
+int choose_checkpoint(const RunOptions& options, scene::LoadedScene& loaded,
+                      std::optional<Checkpoint>& checkpoint);
+/// A packing file named in the scene is relative to the scene file: made absolute for the DEM.
+void make_paths_absolute(scene::LoadedScene& loaded);
+/// How far run.h5 had been written, as a checkpoint stores it (run_checkpoint.cpp).
+void save_extent(state::StateArchive& a, const RunFileExtent& extent);
+RunFileExtent load_extent(const state::StateArchive& a);
 
 class RunSession {
  public:

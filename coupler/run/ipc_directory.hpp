@@ -1,0 +1,14 @@
+// The private directory of a run's ipc:// sockets.
+#pragma once
+
+#include <filesystem>
+
+namespace rockcut::coupler {
+
+/// Creates a private directory (mkdtemp: mode 0700, other users stay off the sockets) under the
+/// temporary directory, or under /tmp when TMPDIR is too long for a socket path (sockaddr_un holds
+/// 108 bytes). It records the coupler's pid, and first removes the directories of couplers that
+/// were killed (SIGKILL leaves them no chance to). Throws std::runtime_error naming the directory.
+std::filesystem::path make_private_ipc_directory();
+
+}  // namespace rockcut::coupler

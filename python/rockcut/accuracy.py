@@ -103,7 +103,7 @@ def read(out_dir):
     return s
 
 
-# A ladder of the study -> the coupler's name of its variable (coupler/run/expected_error.hpp).
+# A ladder of the study -> the coupler's name of its variable (coupler/observers/expected_error.hpp).
 MODEL_LADDERS = {"dt_safety": "dt_safety", "N": "fluid_step_ratio", "h": "h_per_diameter",
                  "size": "size_scale"}
 

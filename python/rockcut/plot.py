@@ -3,7 +3,7 @@
 A cutting run (a tool's time series) gets
   OUT/force.png   the tool forces against tool travel: the force resisting the cut (-F_x) and the
                   vertical force on the tool (F_y, positive up), the steady part shaded and its
-                  means drawn as lines (coupler/run/cutting_summary.hpp defines the steady part);
+                  means drawn as lines (coupler/observers/cutting_summary.hpp defines the steady part);
   OUT/damage.png  the discs of the last complete frame as circles of their radius, coloured by
                   damage D = 1 - bonds / initial bonds (paper figures 11-12), with the chisel;
   OUT/breaks.png  where bonds broke, coloured by mode (tensile, shear).
@@ -82,7 +82,7 @@ def plot_force(out, ts, tool, summary):
     travel_mm = ts["tool_travel_m"] * 1e3
     fh = -ts["tool_force_x_n_per_m"] / 1e3  # kN/m, the force resisting the cut
     fv = ts["tool_force_y_n_per_m"] / 1e3   # kN/m, positive up
-    # The steady part as coupler/run/cutting_summary.cpp takes it: travel >= steady_after_m.
+    # The steady part as coupler/observers/cutting_summary.cpp takes it: travel >= steady_after_m.
     steady = ts["tool_travel_m"] >= tool["steady_after_m"]
     fig, ax = plt.subplots(figsize=(8, 4.5), dpi=100)
     # Raw samples faintly, a 1 mm running mean on top.

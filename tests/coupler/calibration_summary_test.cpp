@@ -3,7 +3,7 @@
 
 #include <numbers>
 
-#include "run/calibration_summary.hpp"
+#include "observers/calibration_summary.hpp"
 
 namespace rockcut::coupler {
 namespace {

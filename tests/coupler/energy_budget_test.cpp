@@ -2,7 +2,7 @@
 // shares of what came in. Ledgers made up so that every share is known exactly.
 #include <gtest/gtest.h>
 
-#include "run/energy_budget.hpp"
+#include "observers/energy_budget.hpp"
 
 namespace rockcut::coupler {
 namespace {

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "run/expected_error.hpp"
+#include "observers/expected_error.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace rockcut::coupler {

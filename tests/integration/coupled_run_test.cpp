@@ -117,6 +117,7 @@ TEST(CoupledRun, DrySceneStartsNoFluidProcessAndIsExact) {
   const Summary summary = coupler::read_summary(dir / "out" / "summary.json");
   EXPECT_LT(number(summary, "error_max_rel"), 1e-11);
   EXPECT_EQ(text(summary, "fluid_model"), "none");
+  EXPECT_EQ(text(summary, "coupling_scheme"), "dry");  // coupler/schemes/dry_scheme.hpp
   // Dry: one message per output event, not per step.
   EXPECT_LT(number(summary, "exchanges"), number(summary, "steps") / 10);
 }

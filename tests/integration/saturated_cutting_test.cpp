@@ -53,6 +53,7 @@ CouplerRun run_small_cut(const std::string& name, const std::vector<std::string>
 void expect_coupled_cutting_summary(const Summary& s, const std::string& model) {
   EXPECT_EQ(text(s, "status"), "completed");
   EXPECT_EQ(text(s, "fluid_model"), model);
+  EXPECT_EQ(text(s, "coupling_scheme"), "half-step exchange");
   for (const char* key :
        {"force_horizontal_mean_n_per_m", "force_vertical_mean_n_per_m", "breaks_tensile",
         "breaks_shear", "chips", "pressure_p1_mean_pa", "pressure_p2_mean_pa",

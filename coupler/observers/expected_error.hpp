@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "observers/run_observer.hpp"
 #include "rockcut/scene.pb.h"
 #include "run/time_plan.hpp"
 
@@ -53,5 +54,15 @@ std::optional<std::string> expected_error_line(const rockcut::Scene& scene, cons
 /// finer than the finest gets the finest's error (the study cannot resolve it).
 std::optional<double> expected_force_error(const ErrorModel& model, const CutSettings& settings,
                                            std::string* detail);
+
+/// The expected error of the run's settings in the start-up report (expected_error_line).
+class ExpectedErrorReport : public RunObserver {
+ public:
+  explicit ExpectedErrorReport(std::string line) : line_(std::move(line)) {}
+  void start(Summary&, std::vector<std::string>& report) override { report.push_back(line_); }
+
+ private:
+  std::string line_;
+};
 
 }  // namespace rockcut::coupler

@@ -1,4 +1,4 @@
-#include "run/cutting_summary.hpp"
+#include "observers/cutting_summary.hpp"
 
 #include <algorithm>
 

@@ -17,13 +17,14 @@
 #include <string>
 #include <vector>
 
+#include "observers/run_observer.hpp"
 #include "output/summary_json.hpp"
 #include "state/state_archive.hpp"
 #include "rockcut/scene.pb.h"
 
 namespace rockcut::coupler {
 
-class CuttingSummary {
+class CuttingSummary : public RunObserver {
  public:
   /// `node_names`: the pressure nodes whose probes the fluid reports (may be empty).
   CuttingSummary(const rockcut::Scene& scene, std::vector<std::string> node_names);
@@ -31,9 +32,14 @@ class CuttingSummary {
   /// One time-series sample of the DEM's scalars (sorted by name).
   void observe(const std::vector<std::pair<std::string, double>>& scalars);
   void write(Summary& summary) const;
+  void row(const RunClock& clock) override { observe(clock.scalars); }
+  bool finish(const RunClock&, Summary& summary, bool) override {
+    write(summary);
+    return true;
+  }
   /// Checkpoint: the steady-part sums and the last sample.
-  void save_state(state::StateArchive& a) const;
-  void load_state(const state::StateArchive& a);
+  void save_state(state::StateArchive& a) const override;
+  void load_state(const state::StateArchive& a) override;
 
  private:
   bool active_ = false;

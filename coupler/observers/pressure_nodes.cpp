@@ -1,4 +1,6 @@
-#include "run/pressure_nodes.hpp"
+#include "observers/pressure_nodes.hpp"
+
+#include "wire/module_client.hpp"
 
 namespace rockcut::coupler {
 
@@ -29,6 +31,21 @@ void place_probes(const std::vector<PressureNodeBox>& nodes, double tip_x_m, dou
     p->set_y_min_m(cy - half);
     p->set_y_max_m(cy + half);
   }
+}
+
+void PressureNodeProbes::start(Summary&, std::vector<std::string>& report) {
+  report.push_back("nodes      " + std::to_string(nodes_.size()) +
+                   " pressure nodes moving with the tool");
+}
+
+void PressureNodeProbes::prepare_fluid_step(const wire::Kinematics& kinematics,
+                                            wire::FluidStep& step) {
+  const auto tip_x = kinematics.scalars().find("tool_tip_x_m");
+  const auto tip_y = kinematics.scalars().find("tool_tip_y_m");
+  if (tip_x == kinematics.scalars().end() || tip_y == kinematics.scalars().end()) {
+    throw wire::ModuleFailure(dem_label_, "reports no tool tip with its Kinematics");
+  }
+  place_probes(nodes_, tip_x->second, tip_y->second, step);
 }
 
 }  // namespace rockcut::coupler

@@ -1,4 +1,4 @@
-#include "run/expected_error.hpp"
+#include "observers/expected_error.hpp"
 
 #include <algorithm>
 #include <cerrno>

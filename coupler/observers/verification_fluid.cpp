@@ -8,7 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "run/verification.hpp"
+#include "observers/verification.hpp"
 
 namespace rockcut::coupler {
 

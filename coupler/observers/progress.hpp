@@ -6,9 +6,11 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "observers/run_observer.hpp"
+
 namespace rockcut::coupler {
 
-class Progress {
+class Progress : public RunObserver {
  public:
   /// `start_step`: where a resumed run starts (the ETA extrapolates from the steps since).
   Progress(double end_time_s, std::uint64_t total_steps, std::FILE* stream,
@@ -16,7 +18,12 @@ class Progress {
   /// Cheap when nothing is due: compares the clock only.
   void update(double time_s, std::uint64_t step);
   /// Prints the final line (and a newline on a terminal).
-  void finish(double time_s, std::uint64_t step);
+  void print_final(double time_s, std::uint64_t step);
+  void exchanged(const RunClock& clock) override { update(clock.time_s, clock.step); }
+  bool finish(const RunClock& clock, Summary&, bool completed) override {
+    if (completed) print_final(clock.time_s, clock.step);
+    return true;
+  }
   double elapsed_s() const;
 
  private:

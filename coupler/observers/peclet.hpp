@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "observers/run_observer.hpp"
 #include "rockcut/scene.pb.h"
 
 namespace rockcut::coupler {
@@ -22,5 +23,15 @@ std::optional<PecletNumber> peclet_number(const rockcut::Scene& scene);
 
 /// p_hydro = p_atm + rho_w g water_depth_m [Pa] (section 3.3) from the scene's fluid block.
 double hydrostatic_pressure_pa(const rockcut::Scene& scene);
+
+/// The Peclet number of a saturated cut in the start-up report and in summary.json.
+class PecletReport : public RunObserver {
+ public:
+  explicit PecletReport(const PecletNumber& pe) : pe_(pe) {}
+  void start(Summary& summary, std::vector<std::string>& report) override;
+
+ private:
+  PecletNumber pe_;
+};
 
 }  // namespace rockcut::coupler

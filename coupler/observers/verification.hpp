@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "observers/run_observer.hpp"
 #include "rockcut/scene.pb.h"
 
 namespace rockcut::coupler {
@@ -41,5 +42,25 @@ VerificationResult verify(const rockcut::Scene& scene, const FinalState& state);
 /// The pore-pressure solutions (verification_fluid.cpp).
 std::vector<std::string> fluid_verification_fields(const rockcut::Scene& scene);
 VerificationResult verify_fluid(const rockcut::Scene& scene, const FinalState& state);
+
+/// The scene's verification: keeps the first and the last frame's positions and the fields the
+/// solution compares, and checks the run's end against the solution.
+class VerificationCheck : public RunObserver {
+ public:
+  /// Throws std::invalid_argument as verification_fields() does.
+  explicit VerificationCheck(const rockcut::Scene& scene);
+  /// The fields besides positions every frame must carry.
+  const std::vector<std::string>& fields() const { return fields_; }
+  void frame(const RunClock& clock, std::span<const FrameField> fields) override;
+  bool finish(const RunClock& clock, Summary& summary, bool completed) override;
+  void save_state(state::StateArchive& a) const override;
+  void load_state(const state::StateArchive& a) override;
+
+ private:
+  const rockcut::Scene& scene_;
+  std::vector<std::string> fields_;
+  std::vector<double> initial_position_, last_position_;
+  std::map<std::string, std::vector<double>> final_fields_;
+};
 
 }  // namespace rockcut::coupler

@@ -1,4 +1,4 @@
-#include "run/calibration_summary.hpp"
+#include "observers/calibration_summary.hpp"
 
 #include <algorithm>
 #include <cmath>

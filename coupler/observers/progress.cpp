@@ -1,4 +1,4 @@
-#include "run/progress.hpp"
+#include "observers/progress.hpp"
 
 #include <unistd.h>
 
@@ -33,7 +33,7 @@ void Progress::update(double time_s, std::uint64_t step) {
   print(time_s, step, false);
 }
 
-void Progress::finish(double time_s, std::uint64_t step) { print(time_s, step, true); }
+void Progress::print_final(double time_s, std::uint64_t step) { print(time_s, step, true); }
 
 void Progress::print(double time_s, std::uint64_t step, bool final) {
   const double wall = elapsed_s();

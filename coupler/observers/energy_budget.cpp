@@ -1,4 +1,4 @@
-#include "run/energy_budget.hpp"
+#include "observers/energy_budget.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -90,6 +90,19 @@ std::string describe(const EnergyBudget& b, const std::string& external) {
   sink("broken bonds", b.broken_bond_j);
   sink("kinetic + strain", b.kinetic_energy_j + b.strain_energy_j);
   return text;
+}
+
+bool EnergyReport::finish(const RunClock& clock, Summary& summary, bool) {
+  if (const double* imbalance = clock.scalar("energy_imbalance_rel")) {
+    summary.set("energy_imbalance_rel", *imbalance);
+    std::fprintf(stderr, "energy     imbalance %.3g of the energy throughput (given = kinetic + "
+                 "strain + damping + friction + broken bonds)\n", *imbalance);
+  }
+  if (const std::optional<EnergyBudget> budget = energy_budget(clock.scalars)) {
+    for (const auto& [key, value] : budget->terms()) summary.set(key, value);
+    std::fprintf(stderr, "energy     %s\n", describe(*budget, external_).c_str());
+  }
+  return true;
 }
 
 }  // namespace rockcut::coupler

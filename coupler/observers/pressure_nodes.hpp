@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "observers/run_observer.hpp"
 #include "rockcut/scene.pb.h"
 #include "rockcut/wire.pb.h"
 
@@ -24,5 +25,20 @@ std::vector<PressureNodeBox> pressure_nodes(const rockcut::Scene& scene);
 /// Sets `step.probes` to the nodes around the tip at (tip_x_m, tip_y_m).
 void place_probes(const std::vector<PressureNodeBox>& nodes, double tip_x_m, double tip_y_m,
                   wire::FluidStep& step);
+
+/// The pressure nodes of a saturated cut: probes placed around the tool tip in every recorded
+/// fluid step (the fluid reports fluid_probe_<node>_pa; observers/cutting_summary.hpp averages it).
+class PressureNodeProbes : public RunObserver {
+ public:
+  /// `dem_label`: the DEM, blamed when its kinematics carry no tool tip.
+  PressureNodeProbes(std::vector<PressureNodeBox> nodes, std::string dem_label)
+      : nodes_(std::move(nodes)), dem_label_(std::move(dem_label)) {}
+  void start(Summary& summary, std::vector<std::string>& report) override;
+  void prepare_fluid_step(const wire::Kinematics& kinematics, wire::FluidStep& step) override;
+
+ private:
+  std::vector<PressureNodeBox> nodes_;
+  std::string dem_label_;
+};
 
 }  // namespace rockcut::coupler

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "observers/run_observer.hpp"
+
 namespace rockcut::coupler {
 
 /// The DEM's ledger [J per m of thickness], the names of its step-report scalars.
@@ -39,5 +41,17 @@ std::optional<EnergyBudget> energy_budget(
 /// fluid takes energy in a cut); `external` names the external force ("pore fluid" in a coupled
 /// run).
 std::string describe(const EnergyBudget& budget, const std::string& external);
+
+/// The energy report at the end of a run: the imbalance and the budget into summary.json and one
+/// line each on stderr (nothing when the DEM reports no ledger).
+class EnergyReport : public RunObserver {
+ public:
+  /// `external`: what the external force is ("pore fluid" in a coupled run).
+  explicit EnergyReport(std::string external) : external_(std::move(external)) {}
+  bool finish(const RunClock& clock, Summary& summary, bool completed) override;
+
+ private:
+  std::string external_;
+};
 
 }  // namespace rockcut::coupler

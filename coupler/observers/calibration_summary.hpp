@@ -7,22 +7,29 @@
 #include <utility>
 #include <vector>
 
+#include "observers/run_observer.hpp"
 #include "output/summary_json.hpp"
 #include "state/state_archive.hpp"
 #include "rockcut/scene.pb.h"
 
 namespace rockcut::coupler {
 
-class CalibrationSummary {
+class CalibrationSummary : public RunObserver {
  public:
   explicit CalibrationSummary(const rockcut::Scene& scene);
   bool active() const { return active_; }
   /// One time-series sample of the DEM's scalars.
   void observe(const std::vector<std::pair<std::string, double>>& scalars);
   void write(Summary& summary) const;
+  void row(const RunClock& clock) override { observe(clock.scalars); }
+  bool finish(const RunClock&, Summary& summary, bool) override {
+    write(summary);
+    return true;
+  }
+  bool ends_run() const override { return test_over(); }
   /// Checkpoint: the samples and the split detector.
-  void save_state(state::StateArchive& a) const;
-  void load_state(const state::StateArchive& a);
+  void save_state(state::StateArchive& a) const override;
+  void load_state(const state::StateArchive& a) override;
   /// True once a Brazilian disc has split and the scene asks to stop there (stop_at_split).
   bool test_over() const { return stop_at_split_ && split_; }
 

@@ -1,0 +1,53 @@
+#include "observers/run_observers.hpp"
+
+#include "observers/calibration_summary.hpp"
+#include "observers/cutting_summary.hpp"
+#include "observers/energy_budget.hpp"
+#include "observers/expected_error.hpp"
+#include "observers/peclet.hpp"
+#include "observers/pressure_nodes.hpp"
+
+namespace rockcut::coupler {
+
+VerificationCheck* register_observers(const rockcut::Scene& scene, const TimePlan& plan,
+                                      const ObserverInputs& inputs, RunObservers& observers) {
+  // Pressure nodes need a fluid model with a pressure; others (prescribed_gradient, a third
+  // party's) run without them.
+  std::vector<PressureNodeBox> nodes;
+  if (inputs.fluid_has_pressure) nodes = pressure_nodes(scene);
+  if (scene.dem().has_tool()) {
+    std::vector<std::string> node_names;
+    for (const PressureNodeBox& n : nodes) node_names.push_back(n.name);
+    observers.add(std::make_unique<CuttingSummary>(scene, std::move(node_names)));
+  }
+  if (!nodes.empty()) {
+    observers.add(std::make_unique<PressureNodeProbes>(std::move(nodes), inputs.dem_label));
+  }
+  if (scene.dem().has_loading_test()) observers.add(std::make_unique<CalibrationSummary>(scene));
+  if (const auto pe = peclet_number(scene)) observers.add(std::make_unique<PecletReport>(*pe));
+  double dem_limit_s = 0.0;
+  for (const Limit& l : inputs.dem_limits) {
+    if (dem_limit_s == 0.0 || l.dt_max_s < dem_limit_s) dem_limit_s = l.dt_max_s;
+  }
+  double stiffness_limit_s = 0.0;
+  for (const Limit& l : inputs.fluid_limits) {
+    if (l.name == "pore_fluid_stiffness") stiffness_limit_s = l.dt_max_s;
+  }
+  if (auto line = expected_error_line(scene, plan, dem_limit_s, stiffness_limit_s, inputs.program_dir)) {
+    observers.add(std::make_unique<ExpectedErrorReport>(std::move(*line)));
+  }
+  VerificationCheck* verification = nullptr;
+  if (scene.has_verification()) {
+    try {
+      auto check = std::make_unique<VerificationCheck>(scene);
+      verification = check.get();
+      observers.add(std::move(check));
+    } catch (const std::invalid_argument& e) {
+      throw PlanError(e.what());
+    }
+  }
+  observers.add(std::make_unique<EnergyReport>(scene.has_fluid() ? "pore fluid" : "external force"));
+  return verification;
+}
+
+}  // namespace rockcut::coupler

@@ -1,0 +1,22 @@
+#include "run/run_clock.hpp"
+
+#include <algorithm>
+
+namespace rockcut::coupler {
+
+void RunClock::take_step_report(const wire::StepReport& report, const std::string& module) {
+  time_s = report.time_s();
+  step = report.step();
+  // protobuf maps have no stable order: sorted, every run writes the same columns.
+  for (const auto& [name, value] : report.scalars()) scalars.emplace_back(name, value);
+  std::sort(scalars.begin(), scalars.end());
+  if (report.has_guard()) throw GuardStop{module, report.guard()};
+}
+
+const double* RunClock::scalar(const std::string& name) const {
+  const auto it = std::find_if(scalars.begin(), scalars.end(),
+                               [&](const auto& s) { return s.first == name; });
+  return it == scalars.end() ? nullptr : &it->second;
+}
+
+}  // namespace rockcut::coupler

@@ -29,10 +29,7 @@ VerificationCheck* register_observers(const rockcut::Scene& scene, const TimePla
   for (const Limit& l : inputs.dem_limits) {
     if (dem_limit_s == 0.0 || l.dt_max_s < dem_limit_s) dem_limit_s = l.dt_max_s;
   }
-  double stiffness_limit_s = 0.0;
-  for (const Limit& l : inputs.fluid_limits) {
-    if (l.name == "pore_fluid_stiffness") stiffness_limit_s = l.dt_max_s;
-  }
+  const double stiffness_limit_s = pore_fluid_stiffness_limit_s(inputs.fluid_limits);
   if (auto line = expected_error_line(scene, plan, dem_limit_s, stiffness_limit_s, inputs.program_dir)) {
     observers.add(std::make_unique<ExpectedErrorReport>(std::move(*line)));
   }

@@ -4,6 +4,7 @@
 
 #include "run/ipc_directory.hpp"
 #include "run/reply_checks.hpp"
+#include "wire/init_parts.hpp"
 #include "wire/protocol.hpp"
 #include "wire/shared_payload.hpp"
 #include "wire/state_message.hpp"
@@ -119,8 +120,7 @@ void RunModules::init() {
   // The scene's directory bounds what a module reads (the DEM's packing file).
   const std::string scene_dir = fs::absolute(loaded_.path).parent_path().lexically_normal().string();
   dem_.request.clear();
-  *dem_.request.envelope.mutable_init()->mutable_scene() = scene;
-  dem_.request.envelope.mutable_init()->set_scene_dir(scene_dir);
+  wire::set_dem_part(scene, scene_dir, *dem_.request.envelope.mutable_init());
   dem_.link->request(dem_.request, dem_.reply);
   dem_.init = dem_.reply.envelope.init_reply();
   check_init_reply(dem_.label(), dem_.init, std::nullopt);
@@ -132,8 +132,8 @@ void RunModules::init() {
   dem_.request.envelope.mutable_frame_request()->add_fields(std::string(wire::field::kPosition));
   dem_.link->request(dem_.request, dem_.reply);
   fluid_->request.clear();
-  *fluid_->request.envelope.mutable_init()->mutable_scene() = scene;
-  fluid_->request.envelope.mutable_init()->set_scene_dir(scene_dir);
+  // What the fluid needs of the solid comes from the DEM's reply (SolidProperties).
+  wire::set_fluid_part(scene, dem_.init, *fluid_->request.envelope.mutable_init());
   fluid_->request.take_arrays(dem_.reply);
   fluid_->link->request(fluid_->request, fluid_->reply);
   fluid_->init = fluid_->reply.envelope.init_reply();
@@ -173,7 +173,8 @@ std::chrono::milliseconds RunModules::allowance(std::uint64_t steps) const {
 std::vector<Limit> RunModules::dem_limits() const {
   std::vector<Limit> limits;
   for (const auto& l : dem_.init.limits()) {
-    limits.push_back({dem_.hello.module_name(), l.name(), l.dt_max_s(), l.detail(), false, ""});
+    limits.push_back(
+        {dem_.hello.module_name(), l.name(), l.dt_max_s(), l.detail(), false, "", l.kind()});
   }
   return limits;
 }
@@ -183,7 +184,7 @@ std::vector<Limit> RunModules::fluid_limits() const {
   if (!fluid_) return limits;
   for (const auto& l : fluid_->init.limits()) {
     limits.push_back({fluid_->hello.module_name(), l.name(), l.dt_max_s(), l.detail(),
-                      l.lag_only(), l.remedy()});
+                      l.lag_only(), l.remedy(), l.kind()});
   }
   return limits;
 }

@@ -135,4 +135,12 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
   return plan;
 }
 
+double pore_fluid_stiffness_limit_s(const std::vector<Limit>& limits) {
+  double dt_s = 0.0;
+  for (const Limit& l : limits) {
+    if (l.kind == wire::LIMIT_KIND_PORE_FLUID_STIFFNESS) dt_s = l.dt_max_s;
+  }
+  return dt_s;
+}
+
 }  // namespace rockcut::coupler

@@ -8,17 +8,19 @@
 #include <vector>
 
 #include "rockcut/scene.pb.h"
+#include "rockcut/wire.pb.h"
 
 namespace rockcut::coupler {
 
 /// A stability limit as reported by a module.
 struct Limit {
   std::string module;  ///< "dem_module", "fluid_module"
-  std::string name;
+  std::string name;     ///< for the report; the coupler picks limits by `kind`
   double dt_max_s = 0.0;
   std::string detail;
   bool lag_only = false;  ///< bounds only N > 1 (a lagged coupling); N = 1 is always allowed
   std::string remedy;     ///< what else to change when it refuses a scene
+  wire::LimitKind kind = wire::LIMIT_KIND_UNSPECIFIED;  ///< what it bounds
 };
 
 /// The scene asks for more than a limit allows. what() names the limit, by how much it is exceeded
@@ -39,5 +41,9 @@ struct TimePlan {
 /// dem_limits bound dt; fluid_limits bound the fluid step N * dt.
 TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_limits,
                    const std::vector<Limit>& fluid_limits, bool coupled);
+
+/// The pore-fluid stiffness limit among `limits` (LIMIT_KIND_PORE_FLUID_STIFFNESS, whatever its
+/// name) [s], or 0 when none is reported: the expected coupling-lag error is read against it.
+double pore_fluid_stiffness_limit_s(const std::vector<Limit>& limits);
 
 }  // namespace rockcut::coupler

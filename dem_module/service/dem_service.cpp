@@ -56,13 +56,13 @@ void DemService::handle(const wire::Message& request, wire::Message& reply) {
 namespace {
 
 // The packing file, if the scene names one, must be a regular file of bounded size in the scene's
-// directory or below it (Init.scene_dir, from the coupler): a peer cannot make the module read
-// anything else. Returns the scene with the file's path made canonical.
-rockcut::Scene with_allowed_packing_file(const wire::Init& init) {
+// directory or below it (DemConfig.scene_dir, from the coupler): a peer cannot make the module
+// read anything else. Returns the DEM's part with the file's path made canonical.
+rockcut::Dem with_allowed_packing_file(const wire::DemConfig& config) {
   namespace fs = std::filesystem;
-  rockcut::Scene scene = init.scene();
-  if (!scene.dem().has_packing_file()) return scene;
-  const fs::path dir(init.scene_dir());
+  rockcut::Dem dem = config.dem();
+  if (!dem.has_packing_file()) return dem;
+  const fs::path dir(config.scene_dir());
   if (dir.empty() || dir.is_relative()) {
     throw std::invalid_argument("dem.packing_file: Init names no absolute scene directory to "
                                 "read it from");
@@ -70,7 +70,7 @@ rockcut::Scene with_allowed_packing_file(const wire::Init& init) {
   std::error_code ec;
   const fs::path allowed = fs::canonical(dir, ec);
   if (ec) throw std::invalid_argument("dem.packing_file: the scene directory cannot be opened");
-  const fs::path named(scene.dem().packing_file().path());
+  const fs::path named(dem.packing_file().path());
   // Where it leads (symbolic links followed) is checked before whether it exists: the module
   // tells nothing about files outside the directory.
   const fs::path file = fs::weakly_canonical(named.is_relative() ? allowed / named : named, ec);
@@ -94,15 +94,27 @@ rockcut::Scene with_allowed_packing_file(const wire::Init& init) {
                                 " MiB (at most " + std::to_string(scene::kMaxParticles) +
                                 " particles are allowed)");
   }
-  scene.mutable_dem()->mutable_packing_file()->set_path(file.string());
-  return scene;
+  dem.mutable_packing_file()->set_path(file.string());
+  return dem;
+}
+
+// Its own part of the scene, or a clear refusal: the DEM never reads the fluid's.
+const wire::DemConfig& dem_part(const wire::Init& init) {
+  if (init.has_dem()) return init.dem();
+  throw std::invalid_argument(
+      std::string("dem_module: Init carries no DEM part (Init.dem, a DemConfig with the scene's "
+                  "dem block)") +
+      (init.has_fluid() ? "; it carries the fluid's part (Init.fluid), which is for fluid_module"
+                        : "") +
+      "; a coupler of protocol " + std::to_string(wire::kProtocolVersion) + " sends it");
 }
 
 }  // namespace
 
 void DemService::init(const wire::Init& init, wire::Message& reply) {
-  scene::validate_received(init.scene());
-  setup_ = build_dem(with_allowed_packing_file(init));
+  const wire::DemConfig& config = dem_part(init);
+  scene::validate_received(config);
+  setup_ = build_dem(with_allowed_packing_file(config));
   if (setup_.system->particles().size() > scene::kMaxParticles) {
     setup_ = {};
     throw std::invalid_argument("the packing file holds more than " +
@@ -113,17 +125,19 @@ void DemService::init(const wire::Init& init, wire::Message& reply) {
   wire::InitReply* r = reply.envelope.mutable_init_reply();
   r->set_model("dem");
   r->set_particle_count(setup_.system->particles().size());
-  if (init.scene().has_fluid()) r->add_needs(std::string(wire::field::kForce));
+  if (config.coupled()) r->add_needs(std::string(wire::field::kForce));
   for (auto f : kProvided) r->add_provides(std::string(f));
   if (setup_.critical.dt_s > 0) {
     wire::StabilityLimit* l = r->add_limits();
     l->set_name("dem_springs");
     l->set_dt_max_s(setup_.critical.dt_s);
     l->set_detail(setup_.critical.detail);
+    l->set_kind(wire::LIMIT_KIND_DEM_SPRINGS);
   }
+  *r->mutable_solid() = solid_properties(config.dem());
   if (!setup_.specimen_report.empty()) r->add_notes(setup_.specimen_report);
   const std::string advice = thread_advice(setup_.system->particles().size(),
-                                           static_cast<int>(init.scene().dem().threads()));
+                                           static_cast<int>(config.dem().threads()));
   if (!advice.empty()) r->add_notes(advice);
 }
 

@@ -231,8 +231,7 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
 
 }  // namespace
 
-DemSetup build_dem(const rockcut::Scene& scene) {
-  const rockcut::Dem& dem = scene.dem();
+DemSetup build_dem(const rockcut::Dem& dem) {
   DemSetup setup;
   Particles particles = particles_from_scene(dem, setup.specimen_report);
   if (particles.size() == 0) throw std::invalid_argument("dem: the scene makes no particles");
@@ -345,6 +344,17 @@ DemSetup build_dem(const rockcut::Scene& scene) {
   }
   setup.initial_energy_j = setup.system->kinetic_energy() + setup.system->strain_energy();
   return setup;
+}
+
+rockcut::wire::SolidProperties solid_properties(const rockcut::Dem& dem) {
+  rockcut::wire::SolidProperties solid;
+  solid.set_grain_density_kg_m3(dem.density_kg_m3());
+  solid.set_local_damping(dem.local_damping());
+  solid.set_dynamic(!dem.has_prescribed_motion());
+  // The walls and the tool the scene writes; a loading test's platens are not counted (no scene
+  // puts a pore fluid between platens).
+  solid.set_seals_at_walls(dem.walls_size() > 0 || dem.has_tool());
+  return solid;
 }
 
 }  // namespace rockcut::dem

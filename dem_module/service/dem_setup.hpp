@@ -10,6 +10,7 @@
 #include "core/guards.hpp"
 #include "core/stability.hpp"
 #include "rockcut/scene.pb.h"
+#include "rockcut/wire.pb.h"
 
 namespace rockcut::dem {
 
@@ -62,8 +63,12 @@ struct DemSetup {
   std::string specimen_report;                ///< porosity, coordination, ... for the log
 };
 
-/// Builds the DEM of `scene`. Throws std::invalid_argument naming the field for inconsistent input
-/// (radius_min_m > radius_max_m, a tool outside the specimen, ...).
-DemSetup build_dem(const rockcut::Scene& scene);
+/// Builds the DEM of the scene's `dem` block. Throws std::invalid_argument naming the field for
+/// inconsistent input (radius_min_m > radius_max_m, a tool outside the specimen, ...).
+DemSetup build_dem(const rockcut::Dem& dem);
+
+/// What the fluid needs to know of this solid (wire.proto, SolidProperties): sent in InitReply
+/// and forwarded by the coupler to the fluid.
+rockcut::wire::SolidProperties solid_properties(const rockcut::Dem& dem);
 
 }  // namespace rockcut::dem

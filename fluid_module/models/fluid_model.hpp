@@ -12,13 +12,17 @@
 
 namespace rockcut::fluid {
 
+/// What a limit bounds (sent as wire.proto's LimitKind): the coupler picks limits by it.
+enum class LimitKind { other, diffusion, pore_fluid_stiffness };
+
 /// Largest stable step of a model's own integrator.
 struct StabilityLimit {
-  std::string name;
+  std::string name;       ///< for the start-up report
   double dt_max_s = 0.0;
   std::string detail;
   bool lag_only = false;  ///< bounds only a lagged coupling (N > 1); N = 1 is always allowed
   std::string remedy;     ///< what to change when it refuses a scene (besides a smaller step)
+  LimitKind kind = LimitKind::other;
 };
 
 /// Per-step kinematics; only the fields the model listed in needs() are filled.

@@ -49,12 +49,12 @@ class PrescribedGradient final : public FluidModel {
   std::vector<double> radius_;
 };
 
-const bool registered = register_model("prescribed_gradient", [](const rockcut::Scene& scene) {
-  if (!scene.fluid().has_prescribed_gradient()) {
+const bool registered = register_model("prescribed_gradient", [](const wire::FluidConfig& config) {
+  if (!config.fluid().has_prescribed_gradient()) {
     throw std::invalid_argument(
         "fluid.model is \"prescribed_gradient\" but the block fluid.prescribed_gradient is missing");
   }
-  return std::make_unique<PrescribedGradient>(scene.fluid().prescribed_gradient());
+  return std::make_unique<PrescribedGradient>(config.fluid().prescribed_gradient());
 });
 
 }  // namespace

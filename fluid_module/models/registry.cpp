@@ -23,8 +23,8 @@ std::vector<std::string> model_names() {
   return names;
 }
 
-std::unique_ptr<FluidModel> make_model(const rockcut::Scene& scene) {
-  const std::string& name = scene.fluid().model();
+std::unique_ptr<FluidModel> make_model(const wire::FluidConfig& config) {
+  const std::string& name = config.fluid().model();
   auto it = factories().find(name);
   if (it == factories().end()) {
     std::string known;
@@ -32,7 +32,7 @@ std::unique_ptr<FluidModel> make_model(const rockcut::Scene& scene) {
     throw std::invalid_argument("fluid.model \"" + name + "\" is not a model of fluid_module; " +
                                 "it offers: " + known);
   }
-  return it->second(scene);
+  return it->second(config);
 }
 
 }  // namespace rockcut::fluid

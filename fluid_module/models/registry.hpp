@@ -7,15 +7,17 @@
 #include <vector>
 
 #include "models/fluid_model.hpp"
-#include "rockcut/scene.pb.h"
+#include "rockcut/wire.pb.h"
 
 namespace rockcut::fluid {
 
-using ModelFactory = std::function<std::unique_ptr<FluidModel>(const rockcut::Scene& scene)>;
+/// A model is built from the fluid's part of the scene (Init.fluid): the scene's fluid block, the
+/// water depth and the solid's properties the DEM sent.
+using ModelFactory = std::function<std::unique_ptr<FluidModel>(const wire::FluidConfig& config)>;
 
 bool register_model(const std::string& name, ModelFactory factory);
-/// Builds the model the scene names; throws std::invalid_argument listing the known models.
-std::unique_ptr<FluidModel> make_model(const rockcut::Scene& scene);
+/// Builds the model fluid.model names; throws std::invalid_argument listing the known models.
+std::unique_ptr<FluidModel> make_model(const wire::FluidConfig& config);
 std::vector<std::string> model_names();
 
 }  // namespace rockcut::fluid

@@ -4,8 +4,8 @@
 
 namespace rockcut::fluid {
 namespace {
-const bool registered = register_model("implicit", [](const rockcut::Scene& scene) {
-  return std::make_unique<sp::ImplicitModel>(sp::sp_params_from_scene(scene));
+const bool registered = register_model("implicit", [](const wire::FluidConfig& config) {
+  return std::make_unique<sp::ImplicitModel>(sp::sp_params_from_config(config));
 });
 }  // namespace
 }  // namespace rockcut::fluid

@@ -20,6 +20,25 @@ namespace {
 bool contains(const std::vector<std::string>& v, std::string_view s) {
   return std::find(v.begin(), v.end(), s) != v.end();
 }
+
+// Its own part of the scene, or a clear refusal: the fluid never reads the DEM's.
+const wire::FluidConfig& fluid_part(const wire::Init& init) {
+  if (init.has_fluid()) return init.fluid();
+  throw std::invalid_argument(
+      std::string("fluid_module: Init carries no fluid part (Init.fluid, a FluidConfig with the "
+                  "scene's fluid block, water_depth_m and the DEM's solid properties)") +
+      (init.has_dem() ? "; it carries the DEM's part (Init.dem), which is for dem_module" : "") +
+      "; a coupler of protocol " + std::to_string(wire::kProtocolVersion) + " sends it");
+}
+
+wire::LimitKind wire_kind(LimitKind kind) {
+  switch (kind) {
+    case LimitKind::diffusion: return wire::LIMIT_KIND_FLUID_DIFFUSION;
+    case LimitKind::pore_fluid_stiffness: return wire::LIMIT_KIND_PORE_FLUID_STIFFNESS;
+    case LimitKind::other: break;
+  }
+  return wire::LIMIT_KIND_UNSPECIFIED;
+}
 }  // namespace
 
 std::string FluidService::version() const { return ROCKCUT_VERSION; }
@@ -48,10 +67,11 @@ void FluidService::handle(const wire::Message& request, wire::Message& reply) {
 void FluidService::init(const wire::Message& request, wire::Message& reply) {
   // Threads of this module's OpenMP loops (the calling thread's setting: in an inproc run the
   // DEM thread keeps its own).
-  // The scene is checked with the coupler's rules first: threads within (max), finite numbers.
-  scene::validate_received(request.envelope.init().scene());
-  omp_set_num_threads(static_cast<int>(std::max(1u, request.envelope.init().scene().fluid().threads())));
-  model_ = make_model(request.envelope.init().scene());
+  // Its part is checked with the coupler's rules first: threads within (max), finite numbers.
+  const wire::FluidConfig& config = fluid_part(request.envelope.init());
+  scene::validate_received(config);
+  omp_set_num_threads(static_cast<int>(std::max(1u, config.fluid().threads())));
+  model_ = make_model(config);
   needs_ = model_->needs();
   StaticData data;
   const std::vector<std::string> needs_static = model_->needs_static();
@@ -97,6 +117,7 @@ void FluidService::init(const wire::Message& request, wire::Message& reply) {
     w->set_detail(l.detail);
     w->set_lag_only(l.lag_only);
     w->set_remedy(l.remedy);
+    w->set_kind(wire_kind(l.kind));
   }
 }
 

@@ -2,12 +2,19 @@
 
 #include <stdexcept>
 
-#include "rockcut/scene.pb.h"
+#include "rockcut/wire.pb.h"
 
 namespace rockcut::fluid::sp {
 
-SpParams sp_params_from_scene(const rockcut::Scene& scene) {
-  const rockcut::Fluid& f = scene.fluid();
+SpParams sp_params_from_config(const wire::FluidConfig& config) {
+  const rockcut::Fluid& f = config.fluid();
+  if (!config.has_solid()) {
+    throw std::invalid_argument(
+        "fluid.model \"" + f.model() + "\" needs the solid's properties (Init.fluid.solid: grain "
+        "density, local damping, whether the solid is dynamic and sealed at walls), which the "
+        "DEM sends in its InitReply.solid and the coupler forwards; this Init has none");
+  }
+  const wire::SolidProperties& solid = config.solid();
   SpParams p;
   p.h_m = f.smoothing_length_m();
   p.alpha = f.biot_coefficient();
@@ -16,7 +23,7 @@ SpParams sp_params_from_scene(const rockcut::Scene& scene) {
   p.viscosity_pa_s = f.viscosity_pa_s();
   // Section 3.3: p_hydro = p_atm + rho_w g H. The pressure is absolute.
   p.p_hydro_pa = f.atmospheric_pressure_pa() +
-                 f.water_density_kg_m3() * f.gravity_m_s2() * scene.water_depth_m();
+                 f.water_density_kg_m3() * f.gravity_m_s2() * config.water_depth_m();
   p.surface_div_r = f.surface_div_r();
   for (const std::string& side : f.sealed_sides()) {
     if (side == "left") p.sealed[0] = true;
@@ -24,10 +31,10 @@ SpParams sp_params_from_scene(const rockcut::Scene& scene) {
     if (side == "bottom") p.sealed[2] = true;
     if (side == "top") p.sealed[3] = true;
   }
-  p.seal_at_walls = scene.dem().walls_size() > 0 || scene.dem().has_tool();
-  p.grain_density_kg_m3 = scene.dem().density_kg_m3();
-  p.dynamic_solid = !scene.dem().has_prescribed_motion();
-  p.local_damping = scene.dem().local_damping();
+  p.seal_at_walls = solid.seals_at_walls();
+  p.grain_density_kg_m3 = solid.grain_density_kg_m3();
+  p.dynamic_solid = solid.dynamic();
+  p.local_damping = solid.local_damping();
   p.cavitation = f.cavitation();
   p.p_min_pa = f.cavitation_pressure_pa();
   p.strain_from = f.strain_from() == "velocity_half" ? StrainFrom::velocity_half

@@ -1,12 +1,12 @@
-// The parameters of the SP pore-pressure models as plain values. Only params.cpp reads the scene;
-// the physics takes these.
+// The parameters of the SP pore-pressure models as plain values. Only params.cpp reads the
+// fluid's part of the scene (Init.fluid); the physics takes these.
 #pragma once
 
 #include <array>
 #include <string>
 
-namespace rockcut {
-class Scene;
+namespace rockcut::wire {
+class FluidConfig;
 }
 
 namespace rockcut::fluid::sp {
@@ -29,10 +29,11 @@ struct SpParams {
   std::array<bool, 4> sealed{};        ///< left, right, bottom, top (Sides order)
   bool seal_at_walls = false;          ///< the DEM has walls or a tool: get their segments
   /// Grain density of the DEM [kg/m^3] and whether the DEM moves the particles by the fluid force
-  /// (false for prescribed motion): together they set the pore-fluid stiffness limit.
+  /// (false for prescribed motion): together they set the pore-fluid stiffness limit. They, the
+  /// damping and seal_at_walls come from the DEM through the protocol (SolidProperties).
   double grain_density_kg_m3 = 2800.0;
   bool dynamic_solid = false;
-  double local_damping = 0.7;          ///< dem.local_damping: removes the lag's energy
+  double local_damping = 0.7;          ///< the DEM's alpha_d (eq. 10): removes the lag's energy
   bool cavitation = true;
   double p_min_pa = 2340.0;            ///< eq. 22
   StrainFrom strain_from = StrainFrom::displacement;
@@ -54,8 +55,9 @@ struct SpParams {
   double diffusivity_m2_s() const { return bulk_modulus_pa * permeability_m2 / viscosity_pa_s; }
 };
 
-/// Reads scene.fluid and scene.water_depth_m. Ranges are checked by the schema; cross-field
-/// problems throw std::invalid_argument naming the fields.
-SpParams sp_params_from_scene(const rockcut::Scene& scene);
+/// Reads the fluid's part of the scene: fluid, water_depth_m and the DEM's solid properties.
+/// Ranges are checked by the schema; cross-field problems and missing solid properties throw
+/// std::invalid_argument naming the fields.
+SpParams sp_params_from_config(const wire::FluidConfig& config);
 
 }  // namespace rockcut::fluid::sp

@@ -34,6 +34,7 @@ std::vector<std::string> PorePressureModel::needs() const {
 
 std::vector<StabilityLimit> PorePressureModel::limits() const {
   std::vector<StabilityLimit> out = {diffusion_limit()};
+  out.back().kind = LimitKind::diffusion;
   // The pore fluid's stiffness under a lagged force (DESIGN section 5; see kFluidStiffnessC),
   // only when the DEM moves the particles by the fluid force.
   const double stiffness = params_.alpha * params_.bulk_modulus_pa;  // k_f [N/m per m]
@@ -46,7 +47,7 @@ std::vector<StabilityLimit> PorePressureModel::limits() const {
                      fmt(kFluidStiffnessC) + ", local damping alpha_d = " +
                      fmt(params_.local_damping) + ", m_min = " + fmt(m_min) +
                      " kg/m, alpha M = " + fmt(stiffness) + " Pa; binds only N > 1",
-                 /*lag_only=*/true, /*remedy=*/{}});
+                 /*lag_only=*/true, /*remedy=*/{}, LimitKind::pore_fluid_stiffness});
   return out;
 }
 

@@ -8,10 +8,13 @@
 namespace rockcut::scene {
 
 std::optional<std::string> particle_budget_problem(const rockcut::Scene& scene) {
+  if (!scene.has_dem()) return std::nullopt;
+  return particle_budget_problem(scene.dem());
+}
+
+std::optional<std::string> particle_budget_problem(const rockcut::Dem& dem) {
   const auto limit = static_cast<double>(kMaxParticles);
   const std::string allowed = "; at most " + std::to_string(kMaxParticles) + " particles are allowed";
-  if (!scene.has_dem()) return std::nullopt;
-  const rockcut::Dem& dem = scene.dem();
   if (dem.has_lattice()) {
     const double n = static_cast<double>(dem.lattice().nx()) * dem.lattice().ny();
     if (n > limit) {

@@ -20,5 +20,7 @@ inline constexpr std::uint64_t kMaxPackingFileBytes = kMaxParticles * 128;
 /// Why `scene` would make more than kMaxParticles particles (one line naming the field), or
 /// nothing. A packing file is judged by the DEM when it reads it (kMaxPackingFileBytes).
 std::optional<std::string> particle_budget_problem(const rockcut::Scene& scene);
+/// The same for the DEM's part alone (what the DEM is sent in Init).
+std::optional<std::string> particle_budget_problem(const rockcut::Dem& dem);
 
 }  // namespace rockcut::scene

@@ -201,16 +201,31 @@ std::vector<Diagnostic> validate(const pb::Message& root, const std::string& fil
   return std::move(validator.diagnostics);
 }
 
-void validate_received(const rockcut::Scene& scene) {
-  const std::vector<Diagnostic> problems = validate(scene, "scene", nullptr, {});
+namespace {
+
+void throw_if_any(const std::vector<Diagnostic>& problems, const std::string& part) {
   if (problems.empty()) return;
-  std::string text = "the scene sent in Init is not valid:";
+  std::string text = "the " + part + " sent in Init is not valid:";
   constexpr std::size_t kShown = 5;
   for (std::size_t k = 0; k < problems.size() && k < kShown; ++k) {
     text += " " + problems[k].message + (k + 1 < problems.size() ? ";" : "");
   }
   if (problems.size() > kShown) text += " and " + std::to_string(problems.size() - kShown) + " more";
   throw std::invalid_argument(text);
+}
+
+}  // namespace
+
+void validate_received(const rockcut::wire::DemConfig& config) {
+  std::vector<Diagnostic> problems = validate(config, "Init", nullptr, {});
+  if (const auto problem = particle_budget_problem(config.dem())) {
+    problems.push_back({"Init", 1, 1, *problem});
+  }
+  throw_if_any(problems, "DEM part of the scene");
+}
+
+void validate_received(const rockcut::wire::FluidConfig& config) {
+  throw_if_any(validate(config, "Init", nullptr, {}), "fluid part of the scene");
 }
 
 }  // namespace rockcut::scene

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rockcut/scene.pb.h"
+#include "rockcut/wire.pb.h"
 
 #include "scene/overrides.hpp"
 #include "scene/scene_loader.hpp"
@@ -22,9 +23,12 @@ namespace rockcut::scene {
 std::vector<Diagnostic> validate(const google::protobuf::Message& root, const std::string& file,
                                  const SourceMap* map, const OverrideSites& sites);
 
-/// What a module runs on the scene it is sent in Init: the same rules as validate() (the
-/// coupler's), so a peer cannot skip them. Throws std::invalid_argument naming the first problems
-/// in one line.
-void validate_received(const rockcut::Scene& scene);
+/// What a module runs on its part of the scene sent in Init: the same rules as validate() (the
+/// coupler's), so a peer cannot skip them, on that part alone. Field paths read as in the scene
+/// ("dem.lattice.radius_m", "fluid.threads", "water_depth_m"); the SolidProperties the fluid is
+/// forwarded read "solid.*". The DEM's part also gets the particle budget
+/// (scene/particle_budget.hpp). Throws std::invalid_argument naming the first problems in one line.
+void validate_received(const rockcut::wire::DemConfig& config);
+void validate_received(const rockcut::wire::FluidConfig& config);
 
 }  // namespace rockcut::scene

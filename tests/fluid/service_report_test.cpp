@@ -18,6 +18,25 @@
 namespace rockcut::fluid::test {
 namespace {
 
+// The fluid's part of `scene` (what the coupler sends in Init), with the solid properties a DEM of
+// that scene reports (dem_module/service/dem_setup.cpp, solid_properties).
+wire::FluidConfig fluid_config(const rockcut::Scene& scene) {
+  wire::FluidConfig config;
+  *config.mutable_fluid() = scene.fluid();
+  config.set_water_depth_m(scene.water_depth_m());
+  wire::SolidProperties* solid = config.mutable_solid();
+  solid->set_grain_density_kg_m3(scene.dem().density_kg_m3());
+  solid->set_local_damping(scene.dem().local_damping());
+  solid->set_dynamic(!scene.dem().has_prescribed_motion());
+  solid->set_seals_at_walls(scene.dem().walls_size() > 0 || scene.dem().has_tool());
+  return config;
+}
+
+rockcut::Scene saturated_reduced() {
+  return scene::load_scene(std::string(ROCKCUT_SOURCE_DIR) + "/cases/cutting/saturated_reduced.pbtxt")
+      .scene;
+}
+
 // A 20 x 10 lattice of 1.2 mm discs with the reduced saturated scene's fluid (h 6 mm).
 struct Lattice {
   std::vector<double> radius, position;
@@ -52,8 +71,7 @@ TEST(FluidService, AnswersScalarsAndPressureNodesOnlyWhenAskedToReport) {
   const std::size_t n = lattice.radius.size();
   FluidService service;
   wire::Message init, reply;
-  *init.envelope.mutable_init()->mutable_scene() =
-      scene::load_scene(std::string(ROCKCUT_SOURCE_DIR) + "/cases/cutting/saturated_reduced.pbtxt").scene;
+  *init.envelope.mutable_init()->mutable_fluid() = fluid_config(saturated_reduced());
   init.add_array(wire::field::kRadius, lattice.radius, 1);
   init.add_array(wire::field::kPosition, lattice.position, 2);
   service.handle(init, reply);
@@ -97,16 +115,15 @@ TEST(FluidService, AnswersScalarsAndPressureNodesOnlyWhenAskedToReport) {
 TEST(FluidService, DerivesTheDisplacementFromSuccessivePositions) {
   const Lattice lattice;
   const std::size_t n = lattice.radius.size();
-  const rockcut::Scene scene =
-      scene::load_scene(std::string(ROCKCUT_SOURCE_DIR) + "/cases/cutting/saturated_reduced.pbtxt").scene;
-  std::unique_ptr<FluidModel> direct = make_model(scene);
+  const wire::FluidConfig config = fluid_config(saturated_reduced());
+  std::unique_ptr<FluidModel> direct = make_model(config);
   const std::vector<std::string> model_needs = direct->needs();
   ASSERT_NE(std::find(model_needs.begin(), model_needs.end(), "displacement"), model_needs.end());
   direct->initialise({lattice.radius, lattice.position});
 
   FluidService service;
   wire::Message init, reply;
-  *init.envelope.mutable_init()->mutable_scene() = scene;
+  *init.envelope.mutable_init()->mutable_fluid() = config;
   init.add_array(wire::field::kRadius, lattice.radius, 1);
   init.add_array(wire::field::kPosition, lattice.position, 2);
   service.handle(init, reply);
@@ -147,6 +164,119 @@ TEST(FluidService, DerivesTheDisplacementFromSuccessivePositions) {
         force.begin(), force.end(), [](double a, double b) { return std::abs(a) < std::abs(b); }));
     EXPECT_GT(largest, 0.0) << "the squeeze must load the pore fluid, or the test shows nothing";
   }
+}
+
+// The InitReply of a FluidService given `config` and the lattice, or the Error's text.
+struct InitAnswer {
+  wire::InitReply reply;
+  std::string error;
+};
+InitAnswer init_with(const wire::Init& init) {
+  const Lattice lattice;
+  FluidService service;
+  wire::Message request, reply;
+  *request.envelope.mutable_init() = init;
+  request.add_array(wire::field::kRadius, lattice.radius, 1);
+  request.add_array(wire::field::kPosition, lattice.position, 2);
+  try {
+    service.handle(request, reply);
+  } catch (const std::exception& e) {
+    return {{}, e.what()};
+  }
+  return {reply.envelope.init_reply(), ""};
+}
+InitAnswer init_with(const wire::FluidConfig& config) {
+  wire::Init init;
+  *init.mutable_fluid() = config;
+  return init_with(init);
+}
+
+// The pore-fluid stiffness limit of an InitReply, found by its kind; -1 when there is none.
+double stiffness_limit_s(const wire::InitReply& reply) {
+  double dt_s = -1.0;
+  for (const wire::StabilityLimit& l : reply.limits()) {
+    if (l.kind() == wire::LIMIT_KIND_PORE_FLUID_STIFFNESS) dt_s = l.dt_max_s();
+  }
+  return dt_s;
+}
+
+// The fluid takes only its own part of the scene: an Init with the DEM's part or none is refused
+// with an error that says what is missing and where it belongs.
+TEST(FluidService, RefusesAnInitWithoutItsPart) {
+  wire::Init dem_only;
+  dem_only.mutable_dem()->mutable_dem()->set_density_kg_m3(2650);
+  const InitAnswer wrong = init_with(dem_only);
+  EXPECT_NE(wrong.error.find("Init carries no fluid part (Init.fluid"), std::string::npos) << wrong.error;
+  EXPECT_NE(wrong.error.find("it carries the DEM's part (Init.dem), which is for dem_module"),
+            std::string::npos) << wrong.error;
+  const InitAnswer empty = init_with(wire::Init{});
+  EXPECT_NE(empty.error.find("Init carries no fluid part"), std::string::npos) << empty.error;
+  EXPECT_EQ(empty.error.find("DEM's part"), std::string::npos) << empty.error;
+
+  // Its part is validated with the scene's rules, named as in the scene file.
+  wire::FluidConfig config = fluid_config(saturated_reduced());
+  config.mutable_fluid()->set_threads(0);
+  config.set_water_depth_m(-1.0);
+  config.mutable_solid()->set_local_damping(1.5);
+  const InitAnswer bad = init_with(config);
+  EXPECT_NE(bad.error.find("the fluid part of the scene sent in Init is not valid"), std::string::npos)
+      << bad.error;
+  EXPECT_NE(bad.error.find("fluid.threads = 0 is out of range"), std::string::npos) << bad.error;
+  EXPECT_NE(bad.error.find("water_depth_m = -1 is out of range"), std::string::npos) << bad.error;
+  EXPECT_NE(bad.error.find("solid.local_damping = 1.5 is out of range"), std::string::npos) << bad.error;
+  config = fluid_config(saturated_reduced());
+  config.mutable_fluid()->clear_model();
+  EXPECT_NE(init_with(config).error.find("missing required field \"fluid.model\""), std::string::npos);
+
+  // The SP models need the solid's properties; without them the Init is refused, not guessed.
+  config = fluid_config(saturated_reduced());
+  config.clear_solid();
+  const InitAnswer no_solid = init_with(config);
+  EXPECT_NE(no_solid.error.find("needs the solid's properties (Init.fluid.solid"), std::string::npos)
+      << no_solid.error;
+}
+
+// What the fluid knows of the solid arrives through the protocol (SolidProperties), and its
+// pore-fluid stiffness limit C alpha_d sqrt(m_min / (alpha M)) follows it: 4 times the grain
+// density doubles it, half the damping halves it, a prescribed (not dynamic) solid has none.
+// Walls or a tool make the model ask for their segments. The ratios are exact up to the rounding
+// of one square root and a few products (1e-14 relative).
+TEST(FluidService, TakesTheSolidPropertiesFromTheProtocol) {
+  const wire::FluidConfig base = fluid_config(saturated_reduced());
+  ASSERT_TRUE(base.solid().dynamic());
+  const InitAnswer reference = init_with(base);
+  ASSERT_EQ(reference.error, "");
+  const double dt0 = stiffness_limit_s(reference.reply);
+  ASSERT_GT(dt0, 0.0);
+  const auto& needs0 = reference.reply.needs();
+  EXPECT_EQ(std::count(needs0.begin(), needs0.end(), wire::field::kWallSegments),
+            base.solid().seals_at_walls() ? 1 : 0);
+
+  wire::FluidConfig heavier = base;
+  heavier.mutable_solid()->set_grain_density_kg_m3(4.0 * base.solid().grain_density_kg_m3());
+  EXPECT_NEAR(stiffness_limit_s(init_with(heavier).reply) / dt0, 2.0, 1e-14);
+
+  wire::FluidConfig less_damped = base;
+  less_damped.mutable_solid()->set_local_damping(0.5 * base.solid().local_damping());
+  EXPECT_NEAR(stiffness_limit_s(init_with(less_damped).reply) / dt0, 0.5, 1e-14);
+
+  wire::FluidConfig prescribed = base;
+  prescribed.mutable_solid()->set_dynamic(false);
+  EXPECT_EQ(stiffness_limit_s(init_with(prescribed).reply), -1.0);
+
+  wire::FluidConfig walls = base;
+  walls.mutable_solid()->set_seals_at_walls(!base.solid().seals_at_walls());
+  const InitAnswer flipped = init_with(walls);
+  EXPECT_EQ(std::count(flipped.reply.needs().begin(), flipped.reply.needs().end(),
+                       wire::field::kWallSegments),
+            walls.solid().seals_at_walls() ? 1 : 0);
+
+  // The diffusion limit is typed too.
+  bool diffusion = false;
+  for (const wire::StabilityLimit& l : reference.reply.limits()) {
+    diffusion = diffusion || l.kind() == wire::LIMIT_KIND_FLUID_DIFFUSION;
+  }
+  EXPECT_TRUE(diffusion);
 }
 
 }  // namespace

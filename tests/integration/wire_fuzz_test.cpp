@@ -21,6 +21,7 @@
 #include "integration/summary_values.hpp"
 #include "scene/scene_loader.hpp"
 #include "wire/curve_keys.hpp"
+#include "wire/init_parts.hpp"
 #include "wire/message.hpp"
 #include "wire/protocol.hpp"
 
@@ -126,11 +127,24 @@ rockcut::Scene tiny_scene() {
   return scene::load_scene(source("cases/verification/free_fall.pbtxt"), {}).scene;
 }
 
+// The DEM's Init of `scene`.
 Message init_of(const rockcut::Scene& scene, const std::string& scene_dir = "") {
   Message m;
-  *m.envelope.mutable_init()->mutable_scene() = scene;
-  m.envelope.mutable_init()->set_scene_dir(scene_dir);
+  wire::set_dem_part(scene, scene_dir, *m.envelope.mutable_init());
   return m;
+}
+
+// The fluid's Init of `scene`, with the solid properties of the DEM's reply `dem`.
+Message fluid_init_of(const rockcut::Scene& scene, const wire::InitReply& dem) {
+  Message m;
+  wire::set_fluid_part(scene, dem, *m.envelope.mutable_init());
+  return m;
+}
+
+// The Init of a module of `kind`.
+Message init_for(wire::ModuleKind kind, const rockcut::Scene& scene, const std::string& scene_dir,
+                 const wire::InitReply& dem) {
+  return kind == wire::MODULE_KIND_FLUID ? fluid_init_of(scene, dem) : init_of(scene, scene_dir);
 }
 
 std::string error_of(const std::optional<Message>& reply) {
@@ -218,15 +232,18 @@ std::uint64_t fuzz_seed() {
   return n ? std::strtoull(n, nullptr, 10) : 20261124;
 }
 
-// The arrays a DEM module gives for the saturated reduced cut (its own Init, then a FrameRequest).
+// The arrays a DEM module gives for the saturated reduced cut (its own Init, then a FrameRequest),
+// and its InitReply in `dem_reply`.
 Message dem_arrays(const rockcut::Scene& scene, const std::string& scene_dir,
-                   const std::vector<std::string>& fields) {
+                   const std::vector<std::string>& fields, wire::InitReply& dem_reply) {
   Module dem("dem_module", "arrays_dem");
   Client client(dem.endpoint);
   Message h = hello(wire::MODULE_KIND_DEM);
   EXPECT_TRUE(client.request(h)->envelope.has_hello_reply());
   Message init = init_of(scene, scene_dir);
-  EXPECT_TRUE(client.request(init, 20000ms)->envelope.has_init_reply());
+  const std::optional<Message> init_reply = client.request(init, 20000ms);
+  EXPECT_TRUE(init_reply && init_reply->envelope.has_init_reply());
+  if (init_reply) dem_reply = init_reply->envelope.init_reply();
   Message frame;
   for (const std::string& f : fields) frame.envelope.mutable_frame_request()->add_fields(f);
   std::optional<Message> reply = client.request(frame);
@@ -254,7 +271,8 @@ TEST(WireFuzz, RandomAndMutatedMessagesNeverKillOrWedgeTheModule) {
                                                "wall_segments"};
   std::vector<std::string> all = {"radius"};
   all.insert(all.end(), kinematics.begin(), kinematics.end());
-  const Message arrays = dem_arrays(scene, scene_dir, all);
+  wire::InitReply dem_reply;
+  const Message arrays = dem_arrays(scene, scene_dir, all, dem_reply);
   const std::size_t particles = arrays.array("radius", 1).size();
   for (const std::string exe : {"dem_module", "fluid_module"}) {
     Module module(exe, "mutated_" + exe);
@@ -262,14 +280,14 @@ TEST(WireFuzz, RandomAndMutatedMessagesNeverKillOrWedgeTheModule) {
     Client owner(module.endpoint);
     Message h = hello(kind);
     ASSERT_TRUE(owner.request(h)->envelope.has_hello_reply());
-    Message init = init_of(scene, scene_dir);
+    Message init = init_for(kind, scene, scene_dir, dem_reply);
     if (kind == wire::MODULE_KIND_FLUID) copy_arrays(arrays, {"radius", "position"}, init);
     const auto init_reply = owner.request(init, 20000ms);
     ASSERT_TRUE(init_reply && init_reply->envelope.has_init_reply()) << error_of(init_reply);
     // The seeds of the mutations.
     std::vector<Message> seeds(7);
     seeds[0] = hello(kind);
-    seeds[1] = init_of(scene, scene_dir);
+    seeds[1] = init_for(kind, scene, scene_dir, dem_reply);
     copy_arrays(arrays, {"radius", "position"}, seeds[1]);
     seeds[2].envelope.mutable_advance()->set_steps(3);
     seeds[2].envelope.mutable_advance()->set_dt_s(1e-7);
@@ -485,6 +503,47 @@ TEST(WireFuzz, BadInitsAreRefusedWithAClearError) {
     EXPECT_EQ(error.find("NOT-A-NUMBER"), std::string::npos) << c.name << " echoes the file";
     EXPECT_LT(rss_mib(dem.process.pid), 200.0) << c.name;
     shut_down(client, dem);
+  }
+}
+
+// Each module takes only its own part of the scene: an Init with the other module's part, or with
+// none, is refused with an error that names what is missing and where it belongs. The DEM's part is
+// checked with the scene's rules and field paths (the particle budget included, above).
+TEST(WireFuzz, AModuleRefusesAnInitWithoutItsPart) {
+  struct Case {
+    std::string exe, expected, not_expected;
+    std::function<void(wire::Init&)> fill;
+  };
+  const std::vector<Case> cases = {
+      {"dem_module", "Init carries no DEM part (Init.dem", "", [](wire::Init&) {}},
+      {"dem_module", "it carries the fluid's part (Init.fluid), which is for fluid_module", "",
+       [](wire::Init& init) { init.mutable_fluid()->mutable_fluid()->set_model("explicit"); }},
+      {"dem_module", "the DEM part of the scene sent in Init is not valid: missing required field "
+                     "\"dem\"", "",
+       [](wire::Init& init) { init.mutable_dem()->set_scene_dir("/"); }},
+      {"dem_module", "dem.density_kg_m3 = -1 is out of range", "",
+       [](wire::Init& init) {
+         wire::set_dem_part(tiny_scene(), "", init);
+         init.mutable_dem()->mutable_dem()->set_density_kg_m3(-1);
+       }},
+      {"fluid_module", "Init carries no fluid part (Init.fluid", "DEM's part",
+       [](wire::Init&) {}},
+      {"fluid_module", "it carries the DEM's part (Init.dem), which is for dem_module", "",
+       [](wire::Init& init) { wire::set_dem_part(tiny_scene(), "", init); }},
+  };
+  for (const Case& c : cases) {
+    Module module(c.exe, "part_" + c.exe);
+    Client client(module.endpoint);
+    Message h = hello(c.exe == "dem_module" ? wire::MODULE_KIND_DEM : wire::MODULE_KIND_FLUID);
+    ASSERT_TRUE(client.request(h)->envelope.has_hello_reply());
+    Message init;
+    c.fill(*init.envelope.mutable_init());
+    const std::string error = error_of(client.request(init, 20000ms));
+    EXPECT_NE(error.find(c.expected), std::string::npos) << c.exe << ": " << error;
+    if (!c.not_expected.empty()) {
+      EXPECT_EQ(error.find(c.not_expected), std::string::npos) << c.exe << ": " << error;
+    }
+    shut_down(client, module);
   }
 }
 

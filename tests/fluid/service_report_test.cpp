@@ -218,12 +218,19 @@ TEST(FluidService, RefusesAnInitWithoutItsPart) {
   config.mutable_fluid()->set_threads(0);
   config.set_water_depth_m(-1.0);
   config.mutable_solid()->set_local_damping(1.5);
+  config.mutable_solid()->set_grain_density_kg_m3(0.0);
   const InitAnswer bad = init_with(config);
   EXPECT_NE(bad.error.find("the fluid part of the scene sent in Init is not valid"), std::string::npos)
       << bad.error;
   EXPECT_NE(bad.error.find("fluid.threads = 0 is out of range"), std::string::npos) << bad.error;
   EXPECT_NE(bad.error.find("water_depth_m = -1 is out of range"), std::string::npos) << bad.error;
   EXPECT_NE(bad.error.find("solid.local_damping = 1.5 is out of range"), std::string::npos) << bad.error;
+  EXPECT_NE(bad.error.find("solid.grain_density_kg_m3 = 0 is out of range"), std::string::npos)
+      << bad.error;
+  config = fluid_config(saturated_reduced());
+  config.mutable_solid()->clear_grain_density_kg_m3();
+  EXPECT_NE(init_with(config).error.find("missing required field \"solid.grain_density_kg_m3\""),
+            std::string::npos);
   config = fluid_config(saturated_reduced());
   config.mutable_fluid()->clear_model();
   EXPECT_NE(init_with(config).error.find("missing required field \"fluid.model\""), std::string::npos);

@@ -4,6 +4,7 @@
 // times, no flux at the tool and walls), and that the fluid model is swapped by one scene line or
 // replaced by an executable given by path, the DEM untouched.
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -151,6 +152,30 @@ TEST(SaturatedCutting, CouplingIntervalAboveTheFluidStiffnessLimitIsRefused) {
   EXPECT_NE(r.err.find("pore_fluid_stiffness"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("use coupling.interval <="), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(r.out / "summary.json"));
+}
+
+// The fluid's stiffness limit C alpha_d sqrt(m_min / (alpha M)) takes the grain density the DEM
+// reports (InitReply.solid, forwarded by the coupler in the fluid's Init), not the scene's: a DEM
+// that reports 4 times the density (rogue_module heavy_grains, the real DEM otherwise) doubles it.
+// Both runs are refused at once (an N far above the limit), naming the limit with 4 significant
+// digits, each within 5e-4 relative: the ratio is 2 within 1e-3 relative.
+TEST(SaturatedCutting, TheFluidStiffnessLimitFollowsTheDensityTheDemReports) {
+  auto stiffness_limit_s = [](const std::string& err) {
+    const std::string key = "limit pore_fluid_stiffness (";
+    const std::size_t at = err.find(key);
+    return at == std::string::npos ? -1.0 : std::stod(err.substr(at + key.size()));
+  };
+  const CouplerRun own = run_small_cut("density_own", {"--set", "coupling.interval=100000"});
+  EXPECT_EQ(own.code, 2) << own.err;
+  setenv("ROCKCUT_ROGUE_MODE", "heavy_grains", 1);
+  const CouplerRun heavy = run_small_cut(
+      "density_heavy", {"--set", "coupling.interval=100000", "--set",
+                        "dem.executable=" + std::string(ROCKCUT_BIN_DIR) + "/../tests/rogue_module"});
+  unsetenv("ROCKCUT_ROGUE_MODE");
+  EXPECT_EQ(heavy.code, 2) << heavy.err;
+  const double dt_own = stiffness_limit_s(own.err), dt_heavy = stiffness_limit_s(heavy.err);
+  ASSERT_GT(dt_own, 0.0) << own.err;
+  EXPECT_NEAR(dt_heavy / dt_own, 2.0, 2.0 * 1e-3) << heavy.err;
 }
 
 TEST(SaturatedCutting, WithoutDampingTheFluidForceDoesNotLag) {

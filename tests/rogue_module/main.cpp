@@ -6,6 +6,8 @@
 //   repeat_step         StepReports that repeat step 0
 //   frame_fewer_arrays  Frames without arrays
 //   frame_wrong_count   Frames with two particles' values
+// and one that is no fault, to follow what the fluid is told of the solid through the coupler:
+//   heavy_grains        InitReply.solid with 4 times the grain density
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -27,7 +29,10 @@ class Rogue final : public rockcut::wire::ModuleHandler {
   void handle(const rockcut::wire::Message& request, rockcut::wire::Message& reply) override {
     real_.handle(request, reply);
     auto& e = reply.envelope;
-    if (mode_ == "nan_limit" && e.has_init_reply()) {
+    if (mode_ == "heavy_grains" && e.has_init_reply()) {
+      auto* solid = e.mutable_init_reply()->mutable_solid();
+      solid->set_grain_density_kg_m3(4.0 * solid->grain_density_kg_m3());
+    } else if (mode_ == "nan_limit" && e.has_init_reply()) {
       e.mutable_init_reply()->add_limits()->set_dt_max_s(NAN);
     } else if (mode_ == "nan_time" && e.has_step_report() && e.step_report().step() > 0) {
       e.mutable_step_report()->set_time_s(NAN);

@@ -27,23 +27,23 @@ struct BondBreak {
 };
 
 /// F_n [N/m] of a bond of rest length L0 at length L [m], compression positive.
-inline double bond_normal_force(double kn_pa, double rest_length_m, double length_m) {
+[[gnu::always_inline]] inline double bond_normal_force(double kn_pa, double rest_length_m, double length_m) {
   return kn_pa * (rest_length_m - length_m);
 }
 
 /// Figure 4: exceeding a strength breaks the bond (tension: F_n < -T_n; shear: |F_t| > T_s).
-inline bool bond_breaks(double fn, double fs, double tn, double ts) {
+[[gnu::always_inline]] inline bool bond_breaks(double fn, double fs, double tn, double ts) {
   return fn < -tn || fs > ts || fs < -ts;
 }
 
 /// The mode of a break: the strength exceeded by the larger ratio.
-inline BreakMode bond_break_mode(double fn, double fs, double tn, double ts) {
+[[gnu::always_inline]] inline BreakMode bond_break_mode(double fn, double fs, double tn, double ts) {
   const double tension_ratio = -fn / tn, shear_ratio = std::abs(fs) / ts;
   return tension_ratio >= shear_ratio ? BreakMode::tensile : BreakMode::shear;
 }
 
 /// Elastic energy [J/m] of a bond carrying F_n and F_t.
-inline double bond_energy(double fn, double fs, double kn_pa, double ks_pa) {
+[[gnu::always_inline]] inline double bond_energy(double fn, double fs, double kn_pa, double ks_pa) {
   return 0.5 * fn * fn / kn_pa + 0.5 * fs * fs / ks_pa;
 }
 

@@ -16,11 +16,11 @@ struct ContactLaw {
 };
 
 /// F_n [N/m] of a contact with overlap > 0 [m], compression positive.
-inline double contact_normal_force(double kn_pa, double overlap_m) { return kn_pa * overlap_m; }
+[[gnu::always_inline]] inline double contact_normal_force(double kn_pa, double overlap_m) { return kn_pa * overlap_m; }
 
 /// Coulomb's limit on the shear spring: |F_t| <= limit (= mu F_n). Sliding cuts the spring back
 /// to the limit; the cut is work done by friction [J/m], added to `friction_j`.
-inline double coulomb_limited(double fs, double limit, double ks_pa, double& friction_j) {
+[[gnu::always_inline]] inline double coulomb_limited(double fs, double limit, double ks_pa, double& friction_j) {
   if (std::abs(fs) > limit) {
     friction_j += limit * (std::abs(fs) - limit) / ks_pa;
     fs = std::copysign(limit, fs);

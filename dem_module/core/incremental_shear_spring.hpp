@@ -13,19 +13,19 @@ namespace rockcut::dem {
 
 /// v_t [m/s]: the relative velocity (dvx, dvy) of the second body against the first, along
 /// t = (tx, ty), less the contact points' spin speeds w_i r_i and w_j r_j (0 for a wall).
-inline double shear_spring_velocity(double dvx, double dvy, double tx, double ty, double spin_i,
+[[gnu::always_inline]] inline double shear_spring_velocity(double dvx, double dvy, double tx, double ty, double spin_i,
                                     double spin_j) {
   return dvx * tx + dvy * ty - spin_i - spin_j;
 }
 
 /// F_t after dt [N/m]: the spring's force less k_s v_t dt (k_s [Pa], v_t [m/s], dt [s]).
-inline double shear_spring_update(double force, double ks_pa, double vt, double dt) {
+[[gnu::always_inline]] inline double shear_spring_update(double force, double ks_pa, double vt, double dt) {
   return force - ks_pa * vt * dt;
 }
 
 /// The same update with k_s dt formed once outside the loop (the bonds'): it rounds differently
 /// from shear_spring_update(), and each caller keeps the form its stored results were made with.
-inline double shear_spring_update_hoisted(double force, double ks_dt, double vt) {
+[[gnu::always_inline]] inline double shear_spring_update_hoisted(double force, double ks_dt, double vt) {
   return force - ks_dt * vt;
 }
 

@@ -16,7 +16,7 @@ namespace rockcut::dem {
 struct PairForce {
   double fx, fy;
 };
-inline PairForce pair_force(double fn, double fs, double nx, double ny, double tx, double ty) {
+[[gnu::always_inline]] inline PairForce pair_force(double fn, double fs, double nx, double ny, double tx, double ty) {
   return {fn * nx + fs * tx, fn * ny + fs * ty};
 }
 

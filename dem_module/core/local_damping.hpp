@@ -7,7 +7,7 @@
 namespace rockcut::dem {
 
 /// Eq. 10 for one degree of freedom: the damping force (or moment) on `force` at `velocity`.
-inline double local_damping_force(double alpha, double force, double velocity) {
+[[gnu::always_inline]] inline double local_damping_force(double alpha, double force, double velocity) {
   return -alpha * std::abs(force) * ((velocity > 0) - (velocity < 0));
 }
 

@@ -11,12 +11,12 @@ namespace rockcut::dem {
 
 /// Eqs. 6 and 8: a half kick of one velocity component (or the angular velocity) by force F
 /// (or moment T) over half_dt = dt/2, with inv_mass = 1/m (or 1/I).
-inline double half_kick(double velocity, double half_dt, double force, double inv_mass) {
+[[gnu::always_inline]] inline double half_kick(double velocity, double half_dt, double force, double inv_mass) {
   return velocity + half_dt * force * inv_mass;
 }
 
 /// Eq. 5: a drift of one position component by v^{n+1/2} over dt.
-inline double drift(double position, double dt, double velocity_half) {
+[[gnu::always_inline]] inline double drift(double position, double dt, double velocity_half) {
   return position + dt * velocity_half;
 }
 

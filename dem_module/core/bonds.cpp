@@ -69,8 +69,8 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
     // bit, so a bond at rest pulls with exactly zero force (d2 * inv_len differs from it in the
     // last bit: round-off forces that then moved a relaxed block and did work on no ledger).
     const double fn = bond_normal_force(kn, rest[k], len);
-    const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], tx,
-                                            ty, w[i] * r[i], w[j] * r[j]);
+    const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], nx,
+                                            ny, w[i] * r[i], w[j] * r[j]);
     const double fs = shear_spring_update_hoisted(shear[k], ks_dt, vt);
     // Perfectly brittle: exceeding a strength breaks the bond in this evaluation, with no force.
     if (bond_breaks(fn, fs, tn, ts)) {

@@ -83,8 +83,8 @@ void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
     const double nx = dx / len, ny = dy / len;
     const double tx = -ny, ty = nx;
     const double fn = contact_normal_force(kn, rsum - len);
-    const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], tx,
-                                            ty, w[i] * r[i], w[j] * r[j]);
+    const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], nx,
+                                            ny, w[i] * r[i], w[j] * r[j]);
     const double fs = coulomb_limited(shear_spring_update(shear_force_[k], ks, vt, dt), mu * fn,
                                       ks, friction);
     shear_force_[k] = fs;

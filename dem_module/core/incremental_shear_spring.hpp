@@ -12,10 +12,12 @@
 namespace rockcut::dem {
 
 /// v_t [m/s]: the relative velocity (dvx, dvy) of the second body against the first, along
-/// t = (tx, ty), less the contact points' spin speeds w_i r_i and w_j r_j (0 for a wall).
-[[gnu::always_inline]] inline double shear_spring_velocity(double dvx, double dvy, double tx, double ty, double spin_i,
-                                    double spin_j) {
-  return dvx * tx + dvy * ty - spin_i - spin_j;
+/// t = (-ny, nx) for the unit normal (nx, ny), less the contact points' spin speeds w_i r_i and
+/// w_j r_j (0 for a wall).
+[[gnu::always_inline]] inline double shear_spring_velocity(double dvx, double dvy, double nx,
+                                                           double ny, double spin_i,
+                                                           double spin_j) {
+  return -dvx * ny + dvy * nx - spin_i - spin_j;
 }
 
 /// F_t after dt [N/m]: the spring's force less k_s v_t dt (k_s [Pa], v_t [m/s], dt [s]).

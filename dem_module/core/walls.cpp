@@ -123,7 +123,7 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     // Disc contact point relative to the wall, rotation included (the wall does not spin).
     const double vt =
         shear_spring_velocity(p.velocity[2 * i] - b.velocity_x, p.velocity[2 * i + 1] - b.velocity_y,
-                              tx, ty, p.angular_velocity[i] * r, 0.0);
+                              nx, ny, p.angular_velocity[i] * r, 0.0);
     const double limit = (b.friction >= 0.0 ? b.friction : mu) * fn;
     const double fs =
         coulomb_limited(shear_spring_update(shear_force_[k], ks, vt, dt), limit, ks, friction_j);

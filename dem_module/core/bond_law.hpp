@@ -3,6 +3,7 @@
 // tension and compression; tangential force from the incremental shear spring
 // (core/incremental_shear_spring.hpp). A bond breaks in tension when the tensile force exceeds
 // T_n, in shear when |F_t| > T_s, never in compression; after breaking the pair may collide.
+// always_inline: with plain inline GCC 12 compiled the step loops differently (less vectorised).
 #pragma once
 
 #include <cmath>

@@ -3,6 +3,7 @@
 // k_n * overlap, compression only; tangential force from the incremental shear spring
 // (core/incremental_shear_spring.hpp), limited by Coulomb, |F_t| <= mu F_n (static or dynamic
 // friction: sliding cuts the spring back to the limit).
+// always_inline: with plain inline GCC 12 compiled the step loops differently (less vectorised).
 #pragma once
 
 #include <cmath>

@@ -1,7 +1,7 @@
 // DEM step throughput on the shared packing (../shared/bench/pack57k.txt, 57,636 discs): the
 // bonded block being cut by the chisel, with bond shear springs and break checks on, for 1 and 2
 // threads. Reports particle-steps per second, the figure ../shared/bench/README.md gives for
-// LAMMPS, LIGGGHTS and YADE on the same packing (k_n 1e10, k_t 2.5e10 N/m, friction 1, dt 2e-8 s).
+// LAMMPS, LIGGGHTS and YADE on the same packing (k_n 1e10, k_t 2.5e10 Pa, friction 1, dt 2e-8 s).
 //
 // Run: build/bin/bench_dem [--packing PATH]   (default: ROCKCUT_SHARED_DIR/bench/pack57k.txt)
 #include <benchmark/benchmark.h>

@@ -45,7 +45,7 @@ BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tole
 }
 
 void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::size_t end,
-                      ForceView out, bool& any_broken, double contact_normal_n_m) {
+                      ForceView out, bool& any_broken, double contact_normal_pa) {
   const double* x = p.position.data();
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
@@ -54,8 +54,8 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
   const std::uint32_t* bj = j_.data();
   const double* rest = rest_length_.data();
   double* shear = shear_force_.data();
-  const double kn = law_.normal_stiffness_n_m, ks_dt = law_.shear_stiffness_n_m * dt;
-  const double tn = law_.tensile_strength_n, ts = law_.shear_strength_n;
+  const double kn = law_.normal_stiffness_pa, ks_dt = law_.shear_stiffness_pa * dt;
+  const double tn = law_.tensile_strength_n_per_m, ts = law_.shear_strength_n_per_m;
   bool broke = false;
   for (std::size_t k = begin; k < end; ++k) {
     const std::uint32_t i = bi[k], j = bj[k];
@@ -63,20 +63,18 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
     const double d2 = dx * dx + dy * dy;
     const double len = std::sqrt(d2);
     const double inv_len = 1.0 / len;
-    const double nx = dx * inv_len, ny = dy * inv_len;  // t = (-ny, nx)
+    const double nx = dx * inv_len, ny = dy * inv_len;
+    const double tx = -ny, ty = nx;
     // Compression positive. The length is the one install() stored as the rest length, bit for
     // bit, so a bond at rest pulls with exactly zero force (d2 * inv_len differs from it in the
     // last bit: round-off forces that then moved a relaxed block and did work on no ledger).
-    const double fn = kn * (rest[k] - len);
-    // Tangential velocity of j's contact point relative to i's, rotation included.
-    const double vt = -(v[2 * j] - v[2 * i]) * ny + (v[2 * j + 1] - v[2 * i + 1]) * nx -
-                      w[i] * r[i] - w[j] * r[j];
-    const double fs = shear[k] - ks_dt * vt;
+    const double fn = bond_normal_force(kn, rest[k], len);
+    const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], nx,
+                                            ny, w[i] * r[i], w[j] * r[j]);
+    const double fs = shear_spring_update_hoisted(shear[k], ks_dt, vt);
     // Perfectly brittle: exceeding a strength breaks the bond in this evaluation, with no force.
-    if (fn < -tn || fs > ts || fs < -ts) {
-      const double tension_ratio = -fn / tn, shear_ratio = std::abs(fs) / ts;
-      broken_[k] = 1 + static_cast<std::uint8_t>(tension_ratio >= shear_ratio ? BreakMode::tensile
-                                                                               : BreakMode::shear);
+    if (bond_breaks(fn, fs, tn, ts)) {
+      broken_[k] = 1 + static_cast<std::uint8_t>(bond_break_mode(fn, fs, tn, ts));
       normal_force_at_break_[k] = fn;
       shear[k] = fs;
       broke = true;
@@ -88,20 +86,20 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
       // ends; tests/integration/energy_ledger_test.cpp). The ledger books the bond's energy less
       // this contact's (remove_broken), so the normal energy passes to the contact unchanged.
       const double overlap = r[i] + r[j] - len;
-      if (contact_normal_n_m > 0.0 && overlap > 0.0) {
-        const double fc = contact_normal_n_m * overlap;
+      if (contact_normal_pa > 0.0 && overlap > 0.0) {
+        const double fc = contact_normal_force(contact_normal_pa, overlap);
         out.add_pair(i, j, fc * nx, fc * ny, 0.0, 0.0);
       }
       continue;
     }
     shear[k] = fs;
-    const double fx = fn * nx - fs * ny, fy = fn * ny + fs * nx;  // on j
-    out.add_pair(i, j, fx, fy, -fs * r[i], -fs * r[j]);
+    const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on j
+    out.add_pair(i, j, f.fx, f.fy, -fs * r[i], -fs * r[j]);
   }
   if (broke) any_broken = true;
 }
 
-void BondSet::remove_broken(const Particles& p, double time_s, double contact_normal_n_m,
+void BondSet::remove_broken(const Particles& p, double time_s, double contact_normal_pa,
                             std::vector<BondBreak>& breaks, std::vector<std::uint32_t>& freed_pairs,
                             EnergyLedger& ledger) {
   std::size_t keep = 0;
@@ -115,9 +113,9 @@ void BondSet::remove_broken(const Particles& p, double time_s, double contact_no
       const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
       const double overlap =
           std::max(0.0, p.radius[i] + p.radius[j] - std::sqrt(dx * dx + dy * dy));
-      ledger.broken_bond_j += 0.5 * fn * fn / law_.normal_stiffness_n_m +
-                              0.5 * fs * fs / law_.shear_stiffness_n_m -
-                              0.5 * contact_normal_n_m * overlap * overlap;
+      ledger.broken_bond_j +=
+          bond_energy(fn, fs, law_.normal_stiffness_pa, law_.shear_stiffness_pa) -
+          0.5 * contact_normal_pa * overlap * overlap;
       breaks.push_back({static_cast<BreakMode>(broken_[k] - 1), time_s,
                         0.5 * (p.position[2 * i] + p.position[2 * j]),
                         0.5 * (p.position[2 * i + 1] + p.position[2 * j + 1]), i, j});
@@ -145,15 +143,14 @@ double BondSet::normal_force(std::size_t k, const Particles& p) const {
   const std::uint32_t i = i_[k], j = j_[k];
   const double dx = p.position[2 * j] - p.position[2 * i];
   const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
-  return law_.normal_stiffness_n_m * (rest_length_[k] - std::sqrt(dx * dx + dy * dy));
+  return bond_normal_force(law_.normal_stiffness_pa, rest_length_[k], std::sqrt(dx * dx + dy * dy));
 }
 
 double BondSet::strain_energy(const Particles& p) const {
   double e = 0.0;
   for (std::size_t k = 0; k < i_.size(); ++k) {
     const double fn = normal_force(k, p);
-    e += 0.5 * fn * fn / law_.normal_stiffness_n_m +
-         0.5 * shear_force_[k] * shear_force_[k] / law_.shear_stiffness_n_m;
+    e += bond_energy(fn, shear_force_[k], law_.normal_stiffness_pa, law_.shear_stiffness_pa);
   }
   return e;
 }

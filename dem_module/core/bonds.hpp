@@ -30,14 +30,14 @@ class BondSet {
   /// `out` for bonds [begin, end). A bond whose strength is exceeded breaks now and carries no
   /// force: it is flagged, and remove_broken() records it. A pair that breaks while its discs
   /// overlap gets, in this same evaluation, the normal force of the contact that replaces the bond,
-  /// contact_normal_n_m times the overlap (0 without contacts; see remove_broken).
+  /// contact_normal_pa times the overlap (0 without contacts; see remove_broken).
   void compute(const Particles& p, double dt, std::size_t begin, std::size_t end, ForceView out,
-               bool& any_broken, double contact_normal_n_m = 0.0);
+               bool& any_broken, double contact_normal_pa = 0.0);
   /// Removes the flagged bonds, appending their breaks (and the pairs, which may now collide) to
   /// the given lists, and the elastic energy they release to the ledger: the bond's energy less
-  /// the normal energy of the contact spring a compressed pair starts with (contact_normal_n_m,
+  /// the normal energy of the contact spring a compressed pair starts with (contact_normal_pa,
   /// 0 without contacts), so that a shear break under compression books only what is lost.
-  void remove_broken(const Particles& p, double time_s, double contact_normal_n_m,
+  void remove_broken(const Particles& p, double time_s, double contact_normal_pa,
                      std::vector<BondBreak>& breaks, std::vector<std::uint32_t>& freed_pairs,
                      EnergyLedger& ledger);
 

@@ -68,7 +68,7 @@ void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
-  const double kn = law.normal_stiffness_n_m, ks = law.shear_stiffness_n_m, mu = law.friction;
+  const double kn = law.normal_stiffness_pa, ks = law.shear_stiffness_pa, mu = law.friction;
   double friction = 0.0;
   for (std::size_t k = begin; k < end; ++k) {
     const std::uint32_t i = i_[k], j = j_[k];
@@ -82,19 +82,14 @@ void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
     const double len = std::sqrt(d2);
     const double nx = dx / len, ny = dy / len;
     const double tx = -ny, ty = nx;
-    const double fn = kn * (rsum - len);
-    const double vt = (v[2 * j] - v[2 * i]) * tx + (v[2 * j + 1] - v[2 * i + 1]) * ty -
-                      w[i] * r[i] - w[j] * r[j];
-    double fs = shear_force_[k] - ks * vt * dt;
-    const double limit = mu * fn;
-    if (std::abs(fs) > limit) {
-      // Sliding: the spring is cut back to the Coulomb limit; the cut is work done by friction.
-      friction += limit * (std::abs(fs) - limit) / ks;
-      fs = std::copysign(limit, fs);
-    }
+    const double fn = contact_normal_force(kn, rsum - len);
+    const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], nx,
+                                            ny, w[i] * r[i], w[j] * r[j]);
+    const double fs = coulomb_limited(shear_spring_update(shear_force_[k], ks, vt, dt), mu * fn,
+                                      ks, friction);
     shear_force_[k] = fs;
-    const double fx = fn * nx + fs * tx, fy = fn * ny + fs * ty;  // on j
-    out.add_pair(i, j, fx, fy, -fs * r[i], -fs * r[j]);
+    const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on j
+    out.add_pair(i, j, f.fx, f.fy, -fs * r[i], -fs * r[j]);
   }
   friction_j += friction;
 }
@@ -107,8 +102,8 @@ double ContactList::strain_energy(const Particles& p, const ContactLaw& law) con
     const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
     const double overlap = p.radius[i] + p.radius[j] - std::sqrt(dx * dx + dy * dy);
     if (overlap <= 0) continue;
-    e += 0.5 * law.normal_stiffness_n_m * overlap * overlap +
-         0.5 * shear_force_[k] * shear_force_[k] / law.shear_stiffness_n_m;
+    e += 0.5 * law.normal_stiffness_pa * overlap * overlap +
+         0.5 * shear_force_[k] * shear_force_[k] / law.shear_stiffness_pa;
   }
   return e;
 }

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/local_damping.hpp"
+#include "core/verlet_half_step.hpp"
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -38,7 +41,7 @@ DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet b
       bonds_(std::move(bonds)),
       walls_(std::move(walls)) {
   if (settings_.threads < 1) settings_.threads = 1;
-  has_pairs_ = settings_.contact.normal_stiffness_n_m > 0 || bonds_.size() > 0 || !walls_.empty();
+  has_pairs_ = settings_.contact.normal_stiffness_pa > 0 || bonds_.size() > 0 || !walls_.empty();
   has_body_forces_ = settings_.gravity_x_m_s2 != 0.0 || settings_.gravity_y_m_s2 != 0.0;
   if (settings_.skin_m <= 0) {
     double r_min = 1e300;
@@ -52,7 +55,7 @@ DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet b
 
 void DemSystem::rebuild_neighbours() {
   bonds_.refresh_partners(particles_.size());
-  if (settings_.contact.normal_stiffness_n_m > 0) {
+  if (settings_.contact.normal_stiffness_pa > 0) {
     contacts_.rebuild(particles_, bonds_, settings_.skin_m, grid_);
   }
   if (!walls_.empty()) walls_.rebuild(particles_, settings_.skin_m);
@@ -81,7 +84,7 @@ void DemSystem::update_force_windows() {
       note(bonds_.first(k));
       note(bonds_.second(k));
     }
-    if (settings_.contact.normal_stiffness_n_m > 0) {
+    if (settings_.contact.normal_stiffness_pa > 0) {
       const auto [c0, c1] = share(contacts_.size(), t, threads);
       for (std::size_t k = c0; k < c1; ++k) {
         note(contacts_.first(k));
@@ -141,13 +144,13 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
   // halves in finish_range().
   for (std::size_t i = begin; i < end; ++i) {
     if (kick) {  // eq. 6, fused with the drift: one pass over the particles
-      v[2 * i] += h * f[2 * i] * inv_m[i];
-      v[2 * i + 1] += h * f[2 * i + 1] * inv_m[i];
-      w[i] += h * q[i] * inv_i[i];
+      v[2 * i] = half_kick(v[2 * i], h, f[2 * i], inv_m[i]);
+      v[2 * i + 1] = half_kick(v[2 * i + 1], h, f[2 * i + 1], inv_m[i]);
+      w[i] = half_kick(w[i], h, q[i], inv_i[i]);
     }
     const double vx = v[2 * i], vy = v[2 * i + 1];
-    x[2 * i] += dt * vx;
-    x[2 * i + 1] += dt * vy;
+    x[2 * i] = drift(x[2 * i], dt, vx);  // eq. 5
+    x[2 * i + 1] = drift(x[2 * i + 1], dt, vy);
     vmax2 = std::max(vmax2, vx * vx + vy * vy);
     if (body) {
       work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * 0.5 * dt;
@@ -183,8 +186,8 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
   const ForceView out = buffers_.view(t, particles_, p0, p1);
   const auto [b0, b1] = share(bonds_.size(), t, threads);
   bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken,
-                 settings_.contact.normal_stiffness_n_m);
-  if (settings_.contact.normal_stiffness_n_m > 0) {
+                 settings_.contact.normal_stiffness_pa);
+  if (settings_.contact.normal_stiffness_pa > 0) {
     const auto [c0, c1] = share(contacts_.size(), t, threads);
     contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, sums.friction_j);
   }
@@ -221,9 +224,9 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
     }
     if (alpha > 0) {
       // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
-      const double dx = -alpha * std::abs(fx) * ((vx > 0) - (vx < 0));
-      const double dy = -alpha * std::abs(fy) * ((vy > 0) - (vy < 0));
-      const double dq = -alpha * std::abs(tq) * ((w[i] > 0) - (w[i] < 0));
+      const double dx = local_damping_force(alpha, fx, vx);
+      const double dy = local_damping_force(alpha, fy, vy);
+      const double dq = local_damping_force(alpha, tq, w[i]);
       damping -= (dx * vx + dy * vy + dq * w[i]) * h;
       fd[3 * i] = dx;
       fd[3 * i + 1] = dy;
@@ -236,9 +239,9 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
     f[2 * i + 1] = fy;
     q[i] = tq;
     if (kick_dt > 0) {  // eq. 8, fused: v^{n+1} = v^{n+1/2} + a^{n+1} dt/2
-      v[2 * i] += kick * fx * inv_m[i];
-      v[2 * i + 1] += kick * fy * inv_m[i];
-      w[i] += kick * tq * inv_i[i];
+      v[2 * i] = half_kick(v[2 * i], kick, fx, inv_m[i]);
+      v[2 * i + 1] = half_kick(v[2 * i + 1], kick, fy, inv_m[i]);
+      w[i] = half_kick(w[i], kick, tq, inv_i[i]);
     }
   }
   sums.damping_j += damping;
@@ -309,9 +312,9 @@ void DemSystem::compute_internal_forces() {
 
 void DemSystem::remove_broken_bonds() {
   freed_pairs_.clear();
-  bonds_.remove_broken(particles_, time_s_, settings_.contact.normal_stiffness_n_m, breaks_,
+  bonds_.remove_broken(particles_, time_s_, settings_.contact.normal_stiffness_pa, breaks_,
                        freed_pairs_, ledger_);
-  if (settings_.contact.normal_stiffness_n_m > 0) contacts_.add_pairs(freed_pairs_);
+  if (settings_.contact.normal_stiffness_pa > 0) contacts_.add_pairs(freed_pairs_);
   update_force_windows();  // the shares of the lists have moved
 }
 

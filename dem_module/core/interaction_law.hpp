@@ -1,34 +1,23 @@
-// The pair laws of DESIGN section 4, per metre of thickness:
-//  - contact: normal k_n * overlap (compression only), tangential incremental k_s * du_t limited by
-//    Coulomb mu * F_n;
-//  - bond (linear elastic, perfectly brittle, paper section 3.1 and figure 4): normal
-//    k_n (L0 - L) in tension and compression, tangential incremental k_s * du_t; breaks in tension
-//    when the tensile force exceeds T_n, in shear when |F_t| > T_s, never in compression.
+// What every pair law shares (paper eq. 9; DESIGN section 4): the interaction force is
+// F = n F_n + t F_t, with n the unit normal from the first body to the second and t = (-n_y, n_x).
+// The laws themselves, one file each: core/contact_law.hpp (contacts, walls and the tool),
+// core/bond_law.hpp (bonds), and the tangential spring they share,
+// core/incremental_shear_spring.hpp.
 #pragma once
+
+#include "core/bond_law.hpp"
+#include "core/contact_law.hpp"
+#include "core/incremental_shear_spring.hpp"
 
 namespace rockcut::dem {
 
-struct ContactLaw {
-  double normal_stiffness_n_m = 0.0;  ///< k_n [N/m per m]
-  double shear_stiffness_n_m = 0.0;   ///< k_s [N/m per m]
-  double friction = 0.0;              ///< mu [-]
+/// Eq. 9: the force (fx, fy) on the second body of normal force fn (compression positive) and
+/// tangential force fs along t = (tx, ty) = (-ny, nx).
+struct PairForce {
+  double fx, fy;
 };
-
-struct BondLaw {
-  double normal_stiffness_n_m = 0.0;   ///< K_n [N/m per m]
-  double shear_stiffness_n_m = 0.0;    ///< K_s [N/m per m]
-  double tensile_strength_n = 0.0;     ///< T_n [N per m]
-  double shear_strength_n = 0.0;       ///< T_s [N per m]
-};
-
-/// How a bond broke.
-enum class BreakMode { tensile = 0, shear = 1 };
-
-struct BondBreak {
-  BreakMode mode;
-  double time_s;
-  double x_m, y_m;  ///< bond midpoint
-  unsigned i, j;
-};
+[[gnu::always_inline]] inline PairForce pair_force(double fn, double fs, double nx, double ny, double tx, double ty) {
+  return {fn * nx + fs * tx, fn * ny + fs * ty};
+}
 
 }  // namespace rockcut::dem

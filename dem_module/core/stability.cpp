@@ -27,7 +27,7 @@ CriticalStep critical_step(const Particles& p, double kn, double ks) {
   }
   if (p.size() == 0) return best;
   char detail[160];
-  std::snprintf(detail, sizeof detail, "%s of disc %zu (r = %.3g m), k_n %.3g, k_s %.3g N/m per m",
+  std::snprintf(detail, sizeof detail, "%s of disc %zu (r = %.3g m), k_n %.3g, k_s %.3g Pa",
                 mode, which, p.radius[which], kn, ks);
   best.dt_s = dt;
   best.detail = detail;

@@ -102,7 +102,7 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     b.previous_force_y = b.force_y;
     b.force_x = b.force_y = 0.0;
   }
-  const double kn = law.normal_stiffness_n_m, ks = law.shear_stiffness_n_m, mu = law.friction;
+  const double kn = law.normal_stiffness_pa, ks = law.shear_stiffness_pa, mu = law.friction;
   for (std::size_t k = 0; k < particle_.size(); ++k) {
     const std::uint32_t i = particle_[k];
     const Segment& seg = segments_[segment_[k]];
@@ -119,18 +119,17 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     const double dist = std::sqrt(d2);
     const double nx = dx / dist, ny = dy / dist;  // from the wall to the disc
     const double tx = -ny, ty = nx;
-    const double fn = kn * (r - dist);
-    // Disc contact point relative to the wall, rotation included.
-    const double vt = (p.velocity[2 * i] - b.velocity_x) * tx +
-                      (p.velocity[2 * i + 1] - b.velocity_y) * ty - p.angular_velocity[i] * r;
-    double fs = shear_force_[k] - ks * vt * dt;
+    const double fn = contact_normal_force(kn, r - dist);
+    // Disc contact point relative to the wall, rotation included (the wall does not spin).
+    const double vt =
+        shear_spring_velocity(p.velocity[2 * i] - b.velocity_x, p.velocity[2 * i + 1] - b.velocity_y,
+                              nx, ny, p.angular_velocity[i] * r, 0.0);
     const double limit = (b.friction >= 0.0 ? b.friction : mu) * fn;
-    if (std::abs(fs) > limit) {
-      friction_j += limit * (std::abs(fs) - limit) / ks;
-      fs = std::copysign(limit, fs);
-    }
+    const double fs =
+        coulomb_limited(shear_spring_update(shear_force_[k], ks, vt, dt), limit, ks, friction_j);
     shear_force_[k] = fs;
-    const double fx = fn * nx + fs * tx, fy = fn * ny + fs * ty;  // on the disc
+    const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on the disc
+    const double fx = f.fx, fy = f.fy;
     out.add(i, fx, fy, -fs * r);
     b.force_x -= fx;
     b.force_y -= fy;
@@ -158,9 +157,9 @@ double WallSet::strain_energy(const Particles& p, const ContactLaw& law) const {
   for (std::size_t k = 0; k < particle_.size(); ++k) {
     const double overlap = pair_overlap(p, k);
     if (overlap <= 0) continue;
-    e += 0.5 * law.normal_stiffness_n_m * overlap * overlap;
-    if (law.shear_stiffness_n_m > 0) {
-      e += 0.5 * shear_force_[k] * shear_force_[k] / law.shear_stiffness_n_m;
+    e += 0.5 * law.normal_stiffness_pa * overlap * overlap;
+    if (law.shear_stiffness_pa > 0) {
+      e += 0.5 * shear_force_[k] * shear_force_[k] / law.shear_stiffness_pa;
     }
   }
   return e;

@@ -265,7 +265,7 @@ DemSetup build_dem(const rockcut::Dem& dem) {
   }
 
   BondSet bonds;
-  double kn = settings.contact.normal_stiffness_n_m, ks = settings.contact.shear_stiffness_n_m;
+  double kn = settings.contact.normal_stiffness_pa, ks = settings.contact.shear_stiffness_pa;
   if (dem.has_bonds()) {
     const rockcut::BondParameters& b = dem.bonds();
     const BondLaw law{b.normal_stiffness_pa(), b.shear_stiffness_pa(),
@@ -277,8 +277,8 @@ DemSetup build_dem(const rockcut::Dem& dem) {
                   2.0 * static_cast<double>(bonds.size()) / static_cast<double>(particles.size()),
                   b.gap_tolerance_m());
     setup.specimen_report += line;
-    kn = std::max(kn, law.normal_stiffness_n_m);
-    ks = std::max(ks, law.shear_stiffness_n_m);
+    kn = std::max(kn, law.normal_stiffness_pa);
+    ks = std::max(ks, law.shear_stiffness_pa);
   }
   bonds.count_per_particle(particles.size(), setup.initial_bonds);
 

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "sp/cavitation.hpp"
 #include "sp/format.hpp"
 #include "sp/operators.hpp"
+#include "sp/storage_equation.hpp"
 
 namespace rockcut::fluid::sp {
 
@@ -40,11 +42,9 @@ void ExplicitModel::advance(double dt_s) {
       pressure_[i] = params_.p_hydro_pa;  // section 3.3: Dirichlet where the surface meets water
       continue;
     }
-    double rate = diffusivity_m2_s_ * laplacian_[i] + source_[i];  // eq. 14
+    const double rate = storage_rate(diffusivity_m2_s_, laplacian_[i], source_[i]);  // eq. 14
     if (params_.cavitation) {
-      // Eq. 22: at the clamp only increases pass; below p_min the pressure is held at p_min.
-      if (pressure_[i] <= p_min) rate = std::max(rate, 0.0);
-      pressure_[i] = std::max(pressure_[i] + dt_s * rate, p_min);
+      pressure_[i] = cavitation_limited_step(pressure_[i], rate, dt_s, p_min);  // eq. 22
     } else {
       pressure_[i] += dt_s * rate;
     }

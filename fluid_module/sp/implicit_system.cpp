@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sp/cavitation.hpp"
 #include "sp/consistent_laplacian.hpp"
 
 namespace rockcut::fluid::sp {
@@ -125,7 +126,7 @@ ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const 
     if (boundary[i] == Boundary::drained) {
       fixed_[i] = drained;
       fixed_value_[i] = p_hydro_pa - p[i];
-    } else if (cavitation && p[i] <= p_min_pa) {
+    } else if (cavitation && at_vapour_pressure(p[i], p_min_pa)) {
       fixed_[i] = clamped;
       fixed_value_[i] = p_min_pa - p[i];
     } else {
@@ -158,7 +159,7 @@ ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const 
     bool changed = false;
     const int ni = static_cast<int>(n);
     for (int i = 0; i < ni; ++i) {
-      if (fixed_[i] == free && p[i] + d_[i] < p_min_pa) {
+      if (fixed_[i] == free && below_vapour_pressure(p[i] + d_[i], p_min_pa)) {
         fixed_[i] = clamped;
         fixed_value_[i] = p_min_pa - p[i];
         changed = true;
@@ -179,7 +180,7 @@ ImplicitReport ImplicitSystem::step(double dt_s, double diffusivity_m2_s, const 
     } else {
       p[i] += d_[i];
       // Round-off of the solve (or the round cap) must not leave a pressure below p_min.
-      if (cavitation && p[i] < p_min_pa) {
+      if (cavitation && below_vapour_pressure(p[i], p_min_pa)) {
         p[i] = p_min_pa;
         ++report.clamped;
       }

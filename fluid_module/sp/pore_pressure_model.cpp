@@ -5,8 +5,11 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "sp/cavitation.hpp"
 #include "sp/format.hpp"
 #include "sp/operators.hpp"
+#include "sp/pressure_force.hpp"
+#include "sp/storage_equation.hpp"
 
 namespace rockcut::fluid::sp {
 
@@ -37,7 +40,7 @@ std::vector<StabilityLimit> PorePressureModel::limits() const {
   out.back().kind = LimitKind::diffusion;
   // The pore fluid's stiffness under a lagged force (DESIGN section 5; see kFluidStiffnessC),
   // only when the DEM moves the particles by the fluid force.
-  const double stiffness = params_.alpha * params_.bulk_modulus_pa;  // k_f [N/m per m]
+  const double stiffness = params_.alpha * params_.bulk_modulus_pa;  // k_f [Pa]
   if (!params_.dynamic_solid || radius_.empty() || !(stiffness > 0.0)) return out;
   const double r_min = *std::min_element(radius_.begin(), radius_.end());
   const double m_min = params_.grain_density_kg_m3 * std::numbers::pi * r_min * r_min;
@@ -178,7 +181,7 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
       for (double& e : strain_rate_) e /= dt_s;
     }
     const double am = params_.alpha * params_.bulk_modulus_pa;
-    for (std::size_t i = 0; i < n; ++i) source_[i] = -am * strain_rate_[i];
+    for (std::size_t i = 0; i < n; ++i) source_[i] = storage_source(am, strain_rate_[i]);
     advance(dt_s);
   } else {
     // t = 0: forces of the initial state only; the drained particles take their boundary value.
@@ -189,7 +192,7 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   }
   cavitated_ = 0;
   if (params_.cavitation) {
-    for (double p : pressure_) cavitated_ += p <= params_.p_min_pa;
+    for (double p : pressure_) cavitated_ += at_vapour_pressure(p, params_.p_min_pa);
   }
 
   if (params_.force_form == ForceForm::adjoint) {
@@ -202,10 +205,7 @@ void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
   }
   // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].
   gradient(geo_, pressure_, grad_);
-  for (std::size_t i = 0; i < n; ++i) {
-    force[2 * i] = -grad_[2 * i] * area_[i];
-    force[2 * i + 1] = -grad_[2 * i + 1] * area_[i];
-  }
+  gradient_pressure_force(grad_, area_, force);
 }
 
 void PorePressureModel::update_share() {

@@ -20,14 +20,14 @@ DemSystem driven_pair(double vx, double vy, const BondLaw& law) {
   p.velocity = {0.0, 0.0, vx, vy};
   BondSet bonds = test::bond_all_touching(p, law);
   DemSettings s;
-  s.contact = {law.normal_stiffness_n_m, law.shear_stiffness_n_m, 1.0};
+  s.contact = {law.normal_stiffness_pa, law.shear_stiffness_pa, 1.0};
   return DemSystem(std::move(p), s, std::move(bonds));
 }
 
 TEST(Bond, BreaksInTensionAtTn) {
   const BondLaw law = test::table1_bond();
   const double v = 1e-3, dt = 1e-8;
-  const double increment = law.normal_stiffness_n_m * v * dt;  // load added per step [N/m]
+  const double increment = law.normal_stiffness_pa * v * dt;  // load added per step [N/m]
   DemSystem s = driven_pair(v, 0.0, law);
   ASSERT_EQ(s.bonds().size(), 1u);
   double last_force = 0.0;
@@ -38,14 +38,14 @@ TEST(Bond, BreaksInTensionAtTn) {
   ASSERT_EQ(s.breaks().size(), 1u);
   EXPECT_EQ(s.breaks()[0].mode, BreakMode::tensile);
   // The last force carried is below T_n and within one increment of it.
-  EXPECT_LE(last_force, law.tensile_strength_n);
-  EXPECT_GT(last_force, law.tensile_strength_n - increment * (1 + 1e-9));
+  EXPECT_LE(last_force, law.tensile_strength_n_per_m);
+  EXPECT_GT(last_force, law.tensile_strength_n_per_m - increment * (1 + 1e-9));
 }
 
 TEST(Bond, BreaksInShearAtTs) {
   const BondLaw law = test::table1_bond();
   const double v = 1e-3, dt = 1e-8;
-  const double increment = law.shear_stiffness_n_m * v * dt;
+  const double increment = law.shear_stiffness_pa * v * dt;
   DemSystem s = driven_pair(0.0, v, law);
   double last_shear = 0.0;
   while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
@@ -54,10 +54,10 @@ TEST(Bond, BreaksInShearAtTs) {
   }
   ASSERT_EQ(s.breaks().size(), 1u);
   EXPECT_EQ(s.breaks()[0].mode, BreakMode::shear);
-  EXPECT_LE(last_shear, law.shear_strength_n);
+  EXPECT_LE(last_shear, law.shear_strength_n_per_m);
   // The normal part of the motion is second order (the pair rotates), so the shear increment
   // per step is k_s v dt to within 1e-6.
-  EXPECT_GT(last_shear, law.shear_strength_n - increment * 1.000001);
+  EXPECT_GT(last_shear, law.shear_strength_n_per_m - increment * 1.000001);
 }
 
 TEST(Bond, NeverBreaksInCompressionAndCarriesIt) {
@@ -65,7 +65,7 @@ TEST(Bond, NeverBreaksInCompressionAndCarriesIt) {
   DemSystem s = driven_pair(-0.1, 0.0, law);
   for (int k = 0; k < 20000; ++k) s.step(1e-8);  // 20 um closer: 20 times T_n / k_n
   EXPECT_EQ(s.bonds().size(), 1u);
-  EXPECT_GT(s.bonds().normal_force(0, s.particles()), 5 * law.tensile_strength_n);
+  EXPECT_GT(s.bonds().normal_force(0, s.particles()), 5 * law.tensile_strength_n_per_m);
 }
 
 TEST(Bond, BrokenPairStillCollides) {
@@ -92,7 +92,7 @@ TEST(Bond, ShearBreakUnderCompressionBooksOnlyTheReleasedEnergy) {
   }
   ASSERT_EQ(s.breaks().size(), 1u);
   ASSERT_EQ(s.breaks()[0].mode, BreakMode::shear);
-  const double kept = 0.5 * normal_force * normal_force / law.normal_stiffness_n_m;
+  const double kept = 0.5 * normal_force * normal_force / law.normal_stiffness_pa;
   ASSERT_GT(kept, 1e-3) << "the pair must be pressed hard enough for the test to tell";
   const double after = s.strain_energy() + s.ledger().broken_bond_j;
   EXPECT_NEAR(after, before, 1e-6) << "energy kept by the contact: " << kept << " J/m";

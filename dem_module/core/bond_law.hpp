@@ -1,0 +1,51 @@
+// The bond law (paper section 3.1, eq. 9 and figure 4; DESIGN section 4), per metre of thickness:
+// linear elastic and perfectly brittle. Normal force k_n (L0 - L), compression positive, in
+// tension and compression; tangential force from the incremental shear spring
+// (core/incremental_shear_spring.hpp). A bond breaks in tension when the tensile force exceeds
+// T_n, in shear when |F_t| > T_s, never in compression; after breaking the pair may collide.
+// always_inline: with plain inline GCC 12 compiled the step loops differently (less vectorised).
+#pragma once
+
+#include <cmath>
+
+namespace rockcut::dem {
+
+struct BondLaw {
+  double normal_stiffness_pa = 0.0;       ///< K_n [Pa] (N/m per metre of thickness)
+  double shear_stiffness_pa = 0.0;        ///< K_s [Pa] (N/m per metre of thickness)
+  double tensile_strength_n_per_m = 0.0;  ///< T_n [N per metre of thickness]
+  double shear_strength_n_per_m = 0.0;    ///< T_s [N per metre of thickness]
+};
+
+/// How a bond broke.
+enum class BreakMode { tensile = 0, shear = 1 };
+
+struct BondBreak {
+  BreakMode mode;
+  double time_s;
+  double x_m, y_m;  ///< bond midpoint
+  unsigned i, j;
+};
+
+/// F_n [N/m] of a bond of rest length L0 at length L [m], compression positive.
+[[gnu::always_inline]] inline double bond_normal_force(double kn_pa, double rest_length_m, double length_m) {
+  return kn_pa * (rest_length_m - length_m);
+}
+
+/// Figure 4: exceeding a strength breaks the bond (tension: F_n < -T_n; shear: |F_t| > T_s).
+[[gnu::always_inline]] inline bool bond_breaks(double fn, double fs, double tn, double ts) {
+  return fn < -tn || fs > ts || fs < -ts;
+}
+
+/// The mode of a break: the strength exceeded by the larger ratio.
+[[gnu::always_inline]] inline BreakMode bond_break_mode(double fn, double fs, double tn, double ts) {
+  const double tension_ratio = -fn / tn, shear_ratio = std::abs(fs) / ts;
+  return tension_ratio >= shear_ratio ? BreakMode::tensile : BreakMode::shear;
+}
+
+/// Elastic energy [J/m] of a bond carrying F_n and F_t.
+[[gnu::always_inline]] inline double bond_energy(double fn, double fs, double kn_pa, double ks_pa) {
+  return 0.5 * fn * fn / kn_pa + 0.5 * fs * fs / ks_pa;
+}
+
+}  // namespace rockcut::dem

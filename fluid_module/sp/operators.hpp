@@ -2,6 +2,8 @@
 // inside the support (the geometry's rows) that writes one value per particle (rows are
 // independent: no atomics would be needed to split them between threads).
 //
+// Definitions: cspm_gradient.cpp (eq. 16), divergence_laplacian.cpp (eqs. 17 and 20),
+// adjoint_pressure_force.cpp (eq. 21, adjoint form) and cspm_interpolation.cpp (eq. 15).
 // These are the operators' definitions, checked against closed forms (tests/fluid/). The models'
 // step applies the divergence, the Laplacian and the adjoint force through sp/step_operator.hpp,
 // the same sums with their per-pair coefficients computed once per geometry and checked against

@@ -5,7 +5,7 @@
 #include "sp/consistent_laplacian.hpp"
 #include "sp/vec2.hpp"
 
-// Every loop is a per-particle gather over the symmetric rows, as in sp/operators.cpp: OpenMP
+// Every loop is a per-particle gather over the symmetric rows, as in the operators of sp/operators.hpp: OpenMP
 // threads split the particles and give the same bits for any thread count.
 
 namespace rockcut::fluid::sp {

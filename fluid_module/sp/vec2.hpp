@@ -1,6 +1,6 @@
 // A pair of doubles, (x, y) of one vector, in one SSE2 register (GCC/Clang vector extension; on
-// other targets the compiler splits it), for the hot passes over the pairs (sp/operators.cpp,
-// sp/step_operator.cpp). Lane k of every vector operation is the scalar operation of component
+// other targets the compiler splits it), for the hot passes over the pairs (the operators of
+// sp/operators.hpp, sp/step_operator.cpp). Lane k of every vector operation is the scalar operation of component
 // k, in the same order, so the results keep the bits of the scalar formulas
 // (tests/fluid/operator_bits_test.cpp); SSE2 has no fused multiply-add that could change them.
 #pragma once

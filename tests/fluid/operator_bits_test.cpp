@@ -1,5 +1,5 @@
-// The SP operators as written for speed (sp/operators.cpp: rows of the pairs inside the support,
-// x and y in one 2-wide vector) against the plain formulas over every pair of the neighbour list,
+// The SP operators as written for speed (sp/operators.hpp and its definitions: rows of the pairs
+// inside the support, x and y in one 2-wide vector) against the plain formulas over every pair of the neighbour list,
 // skin pairs included, with the kernel evaluated here. The two must agree to the last bit: every
 // term the fast code leaves out is an exact zero (W = F = 0 beyond h), and each product and sum
 // is taken in the same order. A regression that drops a pair inside the support, mixes x and y,

@@ -5,6 +5,8 @@
 #include <array>
 #include <string>
 
+#include "sp/darcy_diffusivity.hpp"
+
 namespace rockcut::wire {
 class FluidConfig;
 }
@@ -51,8 +53,10 @@ struct SpParams {
   // Initial Gaussian pulse on top of p_hydro (amplitude 0: none).
   double pulse_amplitude_pa = 0.0, pulse_x_m = 0.0, pulse_y_m = 0.0, pulse_sigma_m = 1.0;
 
-  /// Pore pressure diffusivity D = M kappa / mu [m^2/s] (eq. 14 with uniform kappa).
-  double diffusivity_m2_s() const { return bulk_modulus_pa * permeability_m2 / viscosity_pa_s; }
+  /// Pore pressure diffusivity D = M kappa / mu [m^2/s] (Darcy's law, eq. 12, in eq. 14).
+  double diffusivity_m2_s() const {
+    return darcy_diffusivity_m2_s(bulk_modulus_pa, permeability_m2, viscosity_pa_s);
+  }
 };
 
 /// Reads the fluid's part of the scene: fluid, water_depth_m and the DEM's solid properties.

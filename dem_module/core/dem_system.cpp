@@ -4,9 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#ifdef _OPENMP
 #include <omp.h>
-#endif
 
 namespace rockcut::dem {
 
@@ -15,13 +13,7 @@ namespace {
 // rebuilds rarely, small enough that the candidate list stays short.
 constexpr double kDefaultSkinFraction = 0.2;
 
-int thread_id() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
+int thread_id() { return omp_get_thread_num(); }
 
 // The static share [begin, end) of `count` items for thread t of `threads`.
 std::pair<std::size_t, std::size_t> share(std::size_t count, int t, int threads) {

@@ -61,7 +61,7 @@ void DemSystem::update_force_windows() {
   for (int t = 0; t < threads; ++t) {
     const auto [p0, p1] = share(n, t, threads);
     std::size_t lo = n, hi = 0;
-    auto note = [&](std::uint32_t i) {
+    auto note = [&, p0 = p0, p1 = p1](std::uint32_t i) {  // clang 14 captures no structured binding
       if (i < p0 || i >= p1) {
         lo = std::min<std::size_t>(lo, i);
         hi = std::max<std::size_t>(hi, std::size_t(i) + 1);

@@ -1,5 +1,6 @@
-# Google Benchmark (Debian: libbenchmark-dev); the bench/ programs are skipped without it.
+# Google Benchmark (Debian: libbenchmark-dev) for the bench/ programs.
 find_package(benchmark QUIET CONFIG)
 if(NOT benchmark_FOUND)
-  message(STATUS "Google Benchmark not found: bench/ is not built (apt-get install libbenchmark-dev).")
+  message(FATAL_ERROR "Google Benchmark not found. Install: apt-get install libbenchmark-dev (or run scripts/setup), "
+                      "or configure with -DROCKCUT_BUILD_BENCH=OFF.")
 endif()

@@ -1,12 +1,6 @@
-# HDF5 C library (Debian: libhdf5-dev).
+# HDF5 C library (Debian: libhdf5-dev); FindHDF5 defines the hdf5::hdf5 target.
 find_package(HDF5 1.10 QUIET COMPONENTS C)
 if(NOT HDF5_FOUND)
   message(FATAL_ERROR "HDF5 not found. Install: apt-get install libhdf5-dev (or run scripts/run).")
-endif()
-if(NOT TARGET hdf5::hdf5)
-  add_library(hdf5::hdf5 INTERFACE IMPORTED)
-  target_include_directories(hdf5::hdf5 INTERFACE ${HDF5_INCLUDE_DIRS})
-  target_link_libraries(hdf5::hdf5 INTERFACE ${HDF5_LIBRARIES})
-  target_compile_definitions(hdf5::hdf5 INTERFACE ${HDF5_DEFINITIONS})
 endif()
 message(STATUS "HDF5 ${HDF5_VERSION}")

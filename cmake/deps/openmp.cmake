@@ -1,5 +1,5 @@
-# OpenMP for the particle and bond loops (part of GCC; libomp-dev for clang).
+# OpenMP for the particle, bond and SP loops (part of GCC; libomp-dev for clang).
 find_package(OpenMP QUIET COMPONENTS CXX)
 if(NOT OpenMP_CXX_FOUND)
-  message(WARNING "OpenMP not found: the DEM runs on one thread.")
+  message(FATAL_ERROR "OpenMP not found. GCC has it; with clang install libomp-dev.")
 endif()

@@ -4,12 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <omp.h>
+
 #include "core/local_damping.hpp"
 #include "core/verlet_half_step.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace rockcut::dem {
 
@@ -18,13 +16,7 @@ namespace {
 // rebuilds rarely, small enough that the candidate list stays short.
 constexpr double kDefaultSkinFraction = 0.2;
 
-int thread_id() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
+int thread_id() { return omp_get_thread_num(); }
 
 // The static share [begin, end) of `count` items for thread t of `threads`.
 std::pair<std::size_t, std::size_t> share(std::size_t count, int t, int threads) {
@@ -72,7 +64,7 @@ void DemSystem::update_force_windows() {
   for (int t = 0; t < threads; ++t) {
     const auto [p0, p1] = share(n, t, threads);
     std::size_t lo = n, hi = 0;
-    auto note = [&](std::uint32_t i) {
+    auto note = [&, p0 = p0, p1 = p1](std::uint32_t i) {  // clang 14 captures no structured binding
       if (i < p0 || i >= p1) {
         lo = std::min<std::size_t>(lo, i);
         hi = std::max<std::size_t>(hi, std::size_t(i) + 1);

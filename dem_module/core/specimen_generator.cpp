@@ -111,8 +111,7 @@ bool touching_position(double xa, double ya, double ra, double xb, double yb, do
 class FrontPacker {
  public:
   explicit FrontPacker(const PackingSpec& spec)
-      : spec_(spec),
-        rmax_(spec.radius_max_m),
+      : rmax_(spec.radius_max_m),
         tol_(0.25 * packing_overlap_tolerance_m(spec)),
         radii_(spec.seed, spec.radius_min_m, spec.radius_max_m),
         grid_(make_grid(spec)) {
@@ -314,7 +313,6 @@ class FrontPacker {
     }
   }
 
-  const PackingSpec& spec_;
   double rmax_, tol_;
   bool circle_ = false;
   double inv_hx_ = 0, inv_hy_ = 0;

@@ -127,7 +127,7 @@ void PorePressureModel::initialise(const StaticData& data) {
                               data.position, radius_, sides_, boundary_);
 }
 
-void PorePressureModel::step(double dt_s, double time_s, const Kinematics& k,
+void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k,
                              std::span<double> force) {
   const std::size_t n = radius_.size();
   check_size(k.position, 2 * n, "position");

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sp/surface_detection.hpp"
+
 namespace rockcut::fluid::sp {
 
 void Sides::fit(std::span<const double> position) {
@@ -50,7 +52,7 @@ BoundaryCounts classify_boundary(std::span<const double> div_r, std::span<const 
   BoundaryCounts counts;
   const bool any_open = sides.any_open();
   for (std::size_t i = 0; i < div_r.size(); ++i) {
-    if (div_r[i] > surface_div_r) {
+    if (inside_body(div_r[i], surface_div_r)) {
       out[i] = Boundary::interior;
       continue;
     }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "sp/surface_detection.hpp"
+
 // Every loop here is a per-particle gather over the symmetric neighbour rows: OpenMP threads
 // (fluid.threads) split the particles and give the same bits for any thread count.
 
@@ -93,7 +95,7 @@ void correction_matrices(const Rows& rows, std::span<const double> lucy_volume, 
       a += s * dx * dx;
       b += s * dx * dy;
       c += s * dy * dy;
-      divr += vl[j] * mf * (dx * dx + dy * dy);
+      divr += div_r_pair_term(vl[j], mf, dx, dy);  // eq. 24
       nx -= vl[j] * mf * dx;
       ny -= vl[j] * mf * dy;
     }

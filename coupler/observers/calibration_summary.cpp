@@ -35,13 +35,6 @@ std::vector<CalibrationSummary::Sample>::const_iterator failure_peak(
   }
   return peak;
 }
-
-const double* find(const std::vector<std::pair<std::string, double>>& scalars, const char* name) {
-  for (const auto& [k, v] : scalars) {
-    if (k == name) return &v;
-  }
-  return nullptr;
-}
 }  // namespace
 
 CalibrationSummary::CalibrationSummary(const rockcut::Scene& scene) {
@@ -54,10 +47,10 @@ CalibrationSummary::CalibrationSummary(const rockcut::Scene& scene) {
 
 void CalibrationSummary::observe(const std::vector<std::pair<std::string, double>>& scalars) {
   if (!active_) return;
-  const double* strain = find(scalars, "axial_strain");
-  const double* load = find(scalars, ucs_ ? "axial_stress_pa" : "platen_force_n_per_m");
-  const double* lateral = find(scalars, "lateral_strain");
-  const double* gauge = find(scalars, "axial_strain_gauge");
+  const double* strain = find_value(scalars, "axial_strain");
+  const double* load = find_value(scalars, ucs_ ? "axial_stress_pa" : "platen_force_n_per_m");
+  const double* lateral = find_value(scalars, "lateral_strain");
+  const double* gauge = find_value(scalars, "axial_strain_gauge");
   if (!strain || !load) return;
   samples_.push_back({*strain, *load, lateral ? *lateral : 0.0, gauge ? *gauge : *strain});
   if (ucs_ || split_) return;

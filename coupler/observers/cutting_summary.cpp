@@ -6,16 +6,6 @@
 
 namespace rockcut::coupler {
 
-namespace {
-const double* find(const std::vector<std::pair<std::string, double>>& scalars,
-                   const std::string& name) {
-  for (const auto& [k, v] : scalars) {
-    if (k == name) return &v;
-  }
-  return nullptr;
-}
-}  // namespace
-
 CuttingSummary::CuttingSummary(const rockcut::Scene& scene, std::vector<std::string> node_names) {
   if (!scene.dem().has_tool()) return;
   for (std::string& name : node_names) {
@@ -30,16 +20,16 @@ CuttingSummary::CuttingSummary(const rockcut::Scene& scene, std::vector<std::str
 void CuttingSummary::observe(const std::vector<std::pair<std::string, double>>& scalars) {
   if (!active_) return;
   last_ = scalars;
-  const double* travel = find(scalars, "tool_travel_m");
-  const double* fx = find(scalars, "tool_force_x_n_per_m");
-  const double* fy = find(scalars, "tool_force_y_n_per_m");
+  const double* travel = find_value(scalars, "tool_travel_m");
+  const double* fx = find_value(scalars, "tool_force_x_n_per_m");
+  const double* fy = find_value(scalars, "tool_force_y_n_per_m");
   if (!travel || !fx || !fy || *travel < steady_after_m_) return;
   sum_x_ += -*fx;
   sum_y_ += *fy;
   ++samples_;
   for (NodeMean& node : nodes_) {
-    const double* p = find(scalars, node.pa_key);
-    const double* n = find(scalars, node.particles_key);
+    const double* p = find_value(scalars, node.pa_key);
+    const double* n = find_value(scalars, node.particles_key);
     if (!p || !n || *n < 1) continue;
     node.sum_pa += *p;
     ++node.samples;
@@ -57,9 +47,9 @@ void CuttingSummary::write(Summary& summary) const {
   summary.set("steady_samples", static_cast<std::int64_t>(samples_));
   summary.set("steady_after_m", steady_after_m_);
   for (const char* key : {"breaks_tensile", "breaks_shear", "chips"}) {
-    if (const double* v = find(last_, key)) summary.set(key, static_cast<std::int64_t>(*v));
+    if (const double* v = find_value(last_, key)) summary.set(key, static_cast<std::int64_t>(*v));
   }
-  if (const double* v = find(last_, "chip_area_mean_m2")) summary.set("chip_area_mean_m2", *v);
+  if (const double* v = find_value(last_, "chip_area_mean_m2")) summary.set("chip_area_mean_m2", *v);
   for (const NodeMean& node : nodes_) {
     summary.set("pressure_" + node.name + "_mean_pa",
                 node.samples ? node.sum_pa / static_cast<double>(node.samples) : 0.0);

@@ -8,15 +8,10 @@ namespace rockcut::coupler {
 
 namespace {
 
-double get(const std::vector<std::pair<std::string, double>>& scalars, const std::string& key,
-           bool& found) {
-  const auto it = std::find_if(scalars.begin(), scalars.end(),
-                               [&](const auto& s) { return s.first == key; });
-  if (it == scalars.end()) {
-    found = false;
-    return 0.0;
-  }
-  return it->second;
+double get(const NamedValues& scalars, const std::string& key, bool& found) {
+  const double* value = find_value(scalars, key);
+  found = found && value;
+  return value ? *value : 0.0;
 }
 
 }  // namespace

@@ -13,10 +13,11 @@ void RunClock::take_step_report(const wire::StepReport& report, const std::strin
   if (report.has_guard()) throw GuardStop{module, report.guard()};
 }
 
-const double* RunClock::scalar(const std::string& name) const {
-  const auto it = std::find_if(scalars.begin(), scalars.end(),
-                               [&](const auto& s) { return s.first == name; });
-  return it == scalars.end() ? nullptr : &it->second;
+const double* find_value(const NamedValues& values, const std::string& name) {
+  for (const auto& [key, value] : values) {
+    if (key == name) return &value;
+  }
+  return nullptr;
 }
 
 }  // namespace rockcut::coupler

@@ -20,6 +20,9 @@ struct GuardStop {
 
 using NamedValues = std::vector<std::pair<std::string, double>>;
 
+/// The value named `name` in `values`, or nullptr.
+const double* find_value(const NamedValues& values, const std::string& name);
+
 struct RunClock {
   double time_s = 0.0;
   std::uint64_t step = 0;
@@ -36,7 +39,7 @@ struct RunClock {
   /// `scalars`); throws GuardStop naming `module` when the report carries a tripped guard.
   void take_step_report(const wire::StepReport& report, const std::string& module);
   /// The scalar `name` of the last completed step, or nullptr.
-  const double* scalar(const std::string& name) const;
+  const double* scalar(const std::string& name) const { return find_value(scalars, name); }
 };
 
 }  // namespace rockcut::coupler

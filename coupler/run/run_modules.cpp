@@ -19,12 +19,6 @@ bool contains(const google::protobuf::RepeatedPtrField<std::string>& list, const
   return std::find(list.begin(), list.end(), s) != list.end();
 }
 
-std::string join(const google::protobuf::RepeatedPtrField<std::string>& list) {
-  std::string out;
-  for (const auto& s : list) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
-
 // A module is declared stalled when it does not answer within coupling.timeout_s plus the time its
 // work may take at a throughput far below anything measured (1e6 particle-steps/s, 20-50 times
 // below bench_dem on one core): large or loaded runs are not killed for being slow.
@@ -35,6 +29,12 @@ constexpr double kSlowestParticleStepsPerS = 1e6;
 constexpr std::chrono::milliseconds kStateTimeout{600000};
 
 }  // namespace
+
+std::string join_names(const google::protobuf::RepeatedPtrField<std::string>& names) {
+  std::string out;
+  for (const auto& s : names) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
 
 bool RunModule::provides(const std::string& field) const { return contains(init.provides(), field); }
 
@@ -109,7 +109,7 @@ void RunModules::start() {
           fluid_->label(),
           "the scene asks for fluid.model \"" + scene.fluid().model() + "\", but " +
               fluid_->hello.module_name() + " " + fluid_->hello.module_version() + " offers: " +
-              join(fluid_->hello.models()),
+              join_names(fluid_->hello.models()),
           /*refused=*/true);
     }
   }
@@ -149,7 +149,7 @@ void RunModules::init() {
       throw wire::ModuleFailure(fluid_->label(),
                                 "fluid model " + fluid_->init.model() + " needs \"" + f + "\", which " +
                                     dem_.hello.module_name() + " does not provide (it provides " +
-                                    join(dem_.init.provides()) + ")");
+                                    join_names(dem_.init.provides()) + ")");
     }
     sub->add_fields(f);
   }

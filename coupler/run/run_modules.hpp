@@ -34,6 +34,9 @@ struct BusyTime {
   }
 };
 
+/// "a, b, c": a list of names (fields, models) for a message.
+std::string join_names(const google::protobuf::RepeatedPtrField<std::string>& names);
+
 struct RunModule {
   std::unique_ptr<ModuleLink> link;
   wire::HelloReply hello;

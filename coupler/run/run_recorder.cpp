@@ -14,12 +14,6 @@ namespace {
 // The fields every frame carries when the scene names none.
 const std::vector<std::string> kDefaultFrameFields = {"position", "velocity", "radius"};
 
-std::string join(const google::protobuf::RepeatedPtrField<std::string>& list) {
-  std::string out;
-  for (const auto& s : list) out += (out.empty() ? "" : ", ") + s;
-  return out;
-}
-
 bool has(const std::vector<std::string>& v, const std::string& s) {
   return std::find(v.begin(), v.end(), s) != v.end();
 }
@@ -46,8 +40,8 @@ void RunRecorder::choose_frame_fields(const std::vector<std::string>& extra,
       fluid_frame_fields_.push_back(f);
     } else {
       throw PlanError("output.frame_fields: \"" + f + "\" is provided by no module of this scene (" +
-                      dem.hello.module_name() + ": " + join(dem.init.provides()) +
-                      (fluid ? "; " + fluid->init.model() + ": " + join(fluid->init.provides())
+                      dem.hello.module_name() + ": " + join_names(dem.init.provides()) +
+                      (fluid ? "; " + fluid->init.model() + ": " + join_names(fluid->init.provides())
                              : std::string("; no fluid")) +
                       ")");
     }

@@ -51,10 +51,9 @@ void print_startup(const RunParts& run, const std::vector<std::string>& observer
                dem.hello.module_version().c_str(),
                static_cast<unsigned long long>(run.modules.particle_count()));
   if (const RunModule* fluid = run.modules.fluid()) {
-    std::string needs;
-    for (const auto& f : fluid->init.needs()) needs += (needs.empty() ? "" : ", ") + f;
     std::fprintf(stderr, "fluid      %s %s, model %s, needs [%s]\n", fluid->label().c_str(),
-                 fluid->hello.module_version().c_str(), fluid->init.model().c_str(), needs.c_str());
+                 fluid->hello.module_version().c_str(), fluid->init.model().c_str(),
+                 join_names(fluid->init.needs()).c_str());
     std::fprintf(stderr, "water      depth %.6g m, p_hydro %.6g Pa\n", scene.water_depth_m(),
                  hydrostatic_pressure_pa(scene));
   } else {

@@ -28,28 +28,18 @@ bool spin_until_readable(zmq::socket_t& socket) {
 }
 
 bool spin_until_readable(zmq::socket_t& socket, long budget) {
-  if (budget <= 0) return false;
-
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  const auto end = start + std::chrono::microseconds(budget);
-  auto before = start;
-  while (true) {
-    zmq::pollitem_t item{socket.handle(), 0, ZMQ_POLLIN, 0};
-    try {
-      zmq::poll(&item, 1, std::chrono::milliseconds(0));
-    } catch (const zmq::error_t&) {
-      return false;  // EINTR and the rest: the caller's blocking wait handles them
-    }
-    if (item.revents & ZMQ_POLLIN) return false;
-    sched_yield();  // a thread that has work on this core gets it
-    const auto now = clock::now();
-    // The yield handed the core to a thread with work (another run, or this run's own module),
-    // or the thread was preempted: the core is wanted, so stop polling and sleep.
-    if (now - before > std::chrono::microseconds(kContendedPollUs)) return true;
-    if (now >= end) return false;
-    before = now;
-  }
+  return spin_until(
+      budget, [] { return std::chrono::steady_clock::now(); },
+      [&socket] {
+        zmq::pollitem_t item{socket.handle(), 0, ZMQ_POLLIN, 0};
+        try {
+          zmq::poll(&item, 1, std::chrono::milliseconds(0));
+        } catch (const zmq::error_t&) {
+          return true;  // EINTR and the rest: the caller's blocking wait handles them
+        }
+        return (item.revents & ZMQ_POLLIN) != 0;
+      },
+      [] { sched_yield(); });
 }
 
 }  // namespace rockcut::wire

@@ -12,6 +12,8 @@
 // "Polling"), so the tools that run jobs side by side set 0.
 #pragma once
 
+#include <chrono>
+
 #include <zmq.hpp>
 
 namespace rockcut::wire {
@@ -36,5 +38,28 @@ long spin_budget_us();
 bool spin_until_readable(zmq::socket_t& socket);
 /// The same with an explicit budget [us] (0: return at once).
 bool spin_until_readable(zmq::socket_t& socket, long budget_us);
+
+/// The polling loop itself, with its clock, poll and yield given: `now()` returns a
+/// steady_clock::time_point, `ready()` is true when the wait should end (a message waits, or the
+/// poll failed and the caller's blocking wait should handle it), `yield()` offers the core.
+/// Returns true when a gap between two polls exceeded kContendedPollUs. Tests drive it with a
+/// scripted clock, so the rule is checked without depending on the machine's load.
+template <class Now, class Ready, class Yield>
+bool spin_until(long budget_us, Now&& now, Ready&& ready, Yield&& yield) {
+  if (budget_us <= 0) return false;
+  const auto start = now();
+  const auto end = start + std::chrono::microseconds(budget_us);
+  auto before = start;
+  while (true) {
+    if (ready()) return false;
+    yield();  // a thread that has work on this core gets it
+    const auto after = now();
+    // The yield handed the core to a thread with work (another run, or this run's own module),
+    // or the thread was preempted: the core is wanted, so stop polling and sleep.
+    if (after - before > std::chrono::microseconds(kContendedPollUs)) return true;
+    if (after >= end) return false;
+    before = after;
+  }
+}
 
 }  // namespace rockcut::wire

@@ -98,6 +98,14 @@ TEST(OutDir, ALongTmpdirStillRunsAndLeavesNothingBehind) {
 // Past a file-size limit (as on a full disk) the run stops with one line naming the file and the
 // cause, exit code 5 and a summary.json that says failed; never a signal.
 TEST(OutDir, AFileSizeLimitStopsTheRunWithExitCode5AndASummary) {
+#if defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+  // clang 14's TSan runtime takes SIGBUS in libomp's start-up under any `ulimit -f` (a 7-line
+  // OpenMP program does too; without TSan, or without OpenMP, it runs), so the DEM module cannot
+  // start here: the limit is tested by the regular build (docs/sanitizers.md).
+  GTEST_SKIP() << "TSan with libomp cannot run under a file-size limit";
+#endif
+#endif
   const fs::path dir = fresh_dir("out_dir_full");
   const fs::path out = dir / "out";
   std::string err;

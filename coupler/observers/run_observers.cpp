@@ -9,7 +9,7 @@
 
 namespace rockcut::coupler {
 
-VerificationCheck* register_observers(const rockcut::Scene& scene, const TimePlan& plan,
+void register_observers(const rockcut::Scene& scene, const TimePlan& plan,
                                       const ObserverInputs& inputs, RunObservers& observers) {
   // Pressure nodes need a fluid model with a pressure; others (prescribed_gradient, a third
   // party's) run without them.
@@ -25,26 +25,19 @@ VerificationCheck* register_observers(const rockcut::Scene& scene, const TimePla
   }
   if (scene.dem().has_loading_test()) observers.add(std::make_unique<CalibrationSummary>(scene));
   if (const auto pe = peclet_number(scene)) observers.add(std::make_unique<PecletReport>(*pe));
-  double dem_limit_s = 0.0;
-  for (const Limit& l : inputs.dem_limits) {
-    if (dem_limit_s == 0.0 || l.dt_max_s < dem_limit_s) dem_limit_s = l.dt_max_s;
-  }
+  const double dem_limit_s = smallest_limit_s(inputs.dem_limits);
   const double stiffness_limit_s = pore_fluid_stiffness_limit_s(inputs.fluid_limits);
   if (auto line = expected_error_line(scene, plan, dem_limit_s, stiffness_limit_s, inputs.program_dir)) {
     observers.add(std::make_unique<ExpectedErrorReport>(std::move(*line)));
   }
-  VerificationCheck* verification = nullptr;
   if (scene.has_verification()) {
     try {
-      auto check = std::make_unique<VerificationCheck>(scene);
-      verification = check.get();
-      observers.add(std::move(check));
+      observers.add(std::make_unique<VerificationCheck>(scene));
     } catch (const std::invalid_argument& e) {
       throw PlanError(e.what());
     }
   }
   observers.add(std::make_unique<EnergyReport>(scene.has_fluid() ? "pore fluid" : "external force"));
-  return verification;
 }
 
 }  // namespace rockcut::coupler

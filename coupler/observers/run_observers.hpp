@@ -19,10 +19,9 @@ struct ObserverInputs {
   std::filesystem::path program_dir;  ///< where the expected-error table is found from
 };
 
-/// Registers the observers `scene` asks for, in the order they report. Returns the verification
-/// check, if the scene has one (its fields go into every frame). Throws PlanError for a
+/// Registers the observers `scene` asks for, in the order they report. Throws PlanError for a
 /// verification the scene cannot be checked against.
-VerificationCheck* register_observers(const rockcut::Scene& scene, const TimePlan& plan,
+void register_observers(const rockcut::Scene& scene, const TimePlan& plan,
                                       const ObserverInputs& inputs, RunObservers& observers);
 
 }  // namespace rockcut::coupler

@@ -29,7 +29,9 @@ void RunSession::assemble() {
   const ObserverInputs inputs{modules_.dem().label(),
                               fluid && fluid->provides(std::string(wire::field::kPressure)),
                               modules_.dem_limits(), modules_.fluid_limits(), options_.module_dir};
-  VerificationCheck* verification = register_observers(scene_, plan_, inputs, observers_);
+  register_observers(scene_, plan_, inputs, observers_);
+  // A verification check's fields go into every frame.
+  const VerificationCheck* verification = observers_.find<VerificationCheck>();
   recorder_.choose_frame_fields(
       verification ? verification->fields() : std::vector<std::string>{},
       "verification." + scene_.verification().analytical());

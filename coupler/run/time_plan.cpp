@@ -29,6 +29,11 @@ std::string describe(const Limit& l) {
 
 }  // namespace
 
+double smallest_limit_s(const std::vector<Limit>& limits) {
+  const Limit* l = smallest(limits);
+  return l ? l->dt_max_s : 0.0;
+}
+
 TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_limits,
                    const std::vector<Limit>& fluid_limits, bool coupled) {
   TimePlan plan;

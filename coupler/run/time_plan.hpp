@@ -42,6 +42,9 @@ struct TimePlan {
 TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_limits,
                    const std::vector<Limit>& fluid_limits, bool coupled);
 
+/// The smallest of `limits` [s], or 0 when there is none.
+double smallest_limit_s(const std::vector<Limit>& limits);
+
 /// The pore-fluid stiffness limit among `limits` (LIMIT_KIND_PORE_FLUID_STIFFNESS, whatever its
 /// name) [s], or 0 when none is reported: the expected coupling-lag error is read against it.
 double pore_fluid_stiffness_limit_s(const std::vector<Limit>& limits);

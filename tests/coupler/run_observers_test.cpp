@@ -30,7 +30,8 @@ std::unique_ptr<Built> build(const std::string& name, bool fluid_has_pressure) {
   TimePlan plan;
   plan.dt_s = 1e-8;
   ObserverInputs inputs{"dem_module (test)", fluid_has_pressure, {}, {}, fs::path("/nonexistent")};
-  b->verification = register_observers(b->loaded.scene, plan, inputs, b->observers);
+  register_observers(b->loaded.scene, plan, inputs, b->observers);
+  b->verification = b->observers.find<VerificationCheck>();
   return b;
 }
 

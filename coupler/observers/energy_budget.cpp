@@ -20,11 +20,13 @@ std::vector<std::pair<const char*, double>> EnergyBudget::terms() const {
   return {{"boundary_work_j", boundary_work_j}, {"external_work_j", external_work_j},
           {"gravity_work_j", gravity_work_j},   {"damping_j", damping_j},
           {"friction_j", friction_j},           {"broken_bond_j", broken_bond_j},
+          {"viscous_damping_j", viscous_damping_j}, {"rolling_j", rolling_j},
           {"kinetic_energy_j", kinetic_energy_j}, {"strain_energy_j", strain_energy_j}};
 }
 
 double EnergyBudget::initial_j() const {
-  const double held = kinetic_energy_j + strain_energy_j + damping_j + friction_j + broken_bond_j;
+  const double held = kinetic_energy_j + strain_energy_j + damping_j + friction_j + broken_bond_j +
+                      viscous_damping_j + rolling_j;
   const double work = boundary_work_j + external_work_j + gravity_work_j;
   const double e0 = held + imbalance_j - work;
   // A specimen at rest and zero stress has E0 = 0, which this difference gives up to round-off.
@@ -52,6 +54,9 @@ std::optional<EnergyBudget> energy_budget(
   b.strain_energy_j = get(scalars, "strain_energy_j", found);
   b.imbalance_j = get(scalars, "energy_imbalance_j", found);
   if (!found) return std::nullopt;
+  // Optional: a DEM without dashpots or rolling springs need not report them.
+  if (const double* v = find_value(scalars, "viscous_damping_j")) b.viscous_damping_j = *v;
+  if (const double* v = find_value(scalars, "rolling_j")) b.rolling_j = *v;
   return b;
 }
 
@@ -77,8 +82,10 @@ std::string describe(const EnergyBudget& b, const std::string& external) {
     text += buf;
     sep = ", ";
   };
-  sink("local damping", b.damping_j);
+  if (b.damping_j > 0 || !(b.viscous_damping_j > 0)) sink("local damping", b.damping_j);
+  if (b.viscous_damping_j > 0) sink("viscous damping", b.viscous_damping_j);
   sink("friction", b.friction_j);
+  if (b.rolling_j > 0) sink("rolling resistance", b.rolling_j);
   if (b.external_work_j < 0) sink(external, -b.external_work_j);
   if (b.boundary_work_j < 0) sink("walls and tool", -b.boundary_work_j);
   if (b.gravity_work_j < 0) sink("gravity", -b.gravity_work_j);
@@ -91,7 +98,7 @@ bool EnergyReport::finish(const RunClock& clock, Summary& summary, bool) {
   if (const double* imbalance = clock.scalar("energy_imbalance_rel")) {
     summary.set("energy_imbalance_rel", *imbalance);
     std::fprintf(stderr, "energy     imbalance %.3g of the energy throughput (given = kinetic + "
-                 "strain + damping + friction + broken bonds)\n", *imbalance);
+                 "strain + damping + friction + broken bonds + rolling)\n", *imbalance);
   }
   if (const std::optional<EnergyBudget> budget = energy_budget(clock.scalars)) {
     for (const auto& [key, value] : budget->terms()) summary.set(key, value);

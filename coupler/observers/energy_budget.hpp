@@ -1,6 +1,6 @@
 // Where the energy of a run went (DESIGN section 5): the DEM's ledger at the end of the run, as
-// shares of what came in. In a cut, local damping takes most of the tool's work, and that share
-// sets the size of the tool force (docs/accuracy.md, "Why the lag raises the force").
+// shares of what came in. Under local damping (eq. 10) that damping takes most of a cut's tool
+// work and sets the size of the tool force (docs/model.md, "Damping").
 #pragma once
 
 #include <optional>
@@ -20,6 +20,8 @@ struct EnergyBudget {
   double damping_j = 0.0;        ///< dissipated by local damping (eq. 10)
   double friction_j = 0.0;       ///< dissipated by sliding contacts
   double broken_bond_j = 0.0;    ///< strain energy released by broken bonds
+  double viscous_damping_j = 0.0;  ///< dissipated by the dashpots (0 from a DEM without them)
+  double rolling_j = 0.0;          ///< dissipated by rolling resistance (likewise)
   double kinetic_energy_j = 0.0;
   double strain_energy_j = 0.0;
   double imbalance_j = 0.0;      ///< given - held (energy_imbalance_j)

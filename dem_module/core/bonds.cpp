@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/cell_grid.hpp"
+#include "core/viscous_damping.hpp"
 
 namespace rockcut::dem {
 
@@ -44,18 +45,24 @@ BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tole
   return b;
 }
 
-void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::size_t end,
-                      ForceView out, bool& any_broken, double contact_normal_pa) {
+template <bool kDashpots>
+void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,
+                           ForceView out, bool& any_broken, double contact_normal_pa,
+                           double damping_ratio, double& viscous_j) {
   const double* x = p.position.data();
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
+  const double* inv_m = p.inv_mass.data();
   const std::uint32_t* bi = i_.data();
   const std::uint32_t* bj = j_.data();
   const double* rest = rest_length_.data();
   double* shear = shear_force_.data();
   const double kn = law_.normal_stiffness_pa, ks_dt = law_.shear_stiffness_pa * dt;
   const double tn = law_.tensile_strength_n_per_m, ts = law_.shear_strength_n_per_m;
+  const double cn_scale = kDashpots ? dashpot_scale(damping_ratio, kn) : 0.0;
+  const double ct_scale = kDashpots ? dashpot_scale(damping_ratio, law_.shear_stiffness_pa) : 0.0;
+  double dissipated = 0.0;
   bool broke = false;
   for (std::size_t k = begin; k < end; ++k) {
     const std::uint32_t i = bi[k], j = bj[k];
@@ -73,6 +80,7 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
                                             ny, w[i] * r[i], w[j] * r[j]);
     const double fs = shear_spring_update_hoisted(shear[k], ks_dt, vt);
     // Perfectly brittle: exceeding a strength breaks the bond in this evaluation, with no force.
+    // The strengths bound the springs' forces; the dashpots beside them do not break a bond.
     if (bond_breaks(fn, fs, tn, ts)) {
       broken_[k] = 1 + static_cast<std::uint8_t>(bond_break_mode(fn, fs, tn, ts));
       normal_force_at_break_[k] = fn;
@@ -93,10 +101,32 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
       continue;
     }
     shear[k] = fs;
-    const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on j
-    out.add_pair(i, j, f.fx, f.fy, -fs * r[i], -fs * r[j]);
+    if constexpr (kDashpots) {
+      const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
+      const double sqrt_m = sqrt_effective_mass(inv_m[i], inv_m[j]);
+      const double cn = cn_scale * sqrt_m, ct = ct_scale * sqrt_m;
+      dissipated += (cn * vn * vn + ct * vt * vt) * dt;
+      const double fn_total = fn + dashpot_force(cn, vn), fs_total = fs + dashpot_force(ct, vt);
+      const PairForce f = pair_force(fn_total, fs_total, nx, ny, tx, ty);  // on j
+      out.add_pair(i, j, f.fx, f.fy, -fs_total * r[i], -fs_total * r[j]);
+    } else {
+      const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on j
+      out.add_pair(i, j, f.fx, f.fy, -fs * r[i], -fs * r[j]);
+    }
   }
   if (broke) any_broken = true;
+  viscous_j += dissipated;
+}
+
+void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::size_t end,
+                      ForceView out, bool& any_broken, double contact_normal_pa,
+                      double damping_ratio, double& viscous_j) {
+  if (damping_ratio > 0.0) {
+    compute_impl<true>(p, dt, begin, end, out, any_broken, contact_normal_pa, damping_ratio,
+                       viscous_j);
+  } else {
+    compute_impl<false>(p, dt, begin, end, out, any_broken, contact_normal_pa, 0.0, viscous_j);
+  }
 }
 
 void BondSet::remove_broken(const Particles& p, double time_s, double contact_normal_pa,

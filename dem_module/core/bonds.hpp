@@ -30,9 +30,12 @@ class BondSet {
   /// `out` for bonds [begin, end). A bond whose strength is exceeded breaks now and carries no
   /// force: it is flagged, and remove_broken() records it. A pair that breaks while its discs
   /// overlap gets, in this same evaluation, the normal force of the contact that replaces the bond,
-  /// contact_normal_pa times the overlap (0 without contacts; see remove_broken).
+  /// contact_normal_pa times the overlap (0 without contacts; see remove_broken). With
+  /// damping_ratio > 0 each bond has a normal and a tangential dashpot beside its springs
+  /// (core/viscous_damping.hpp), whose dissipation is added to `viscous_j`.
   void compute(const Particles& p, double dt, std::size_t begin, std::size_t end, ForceView out,
-               bool& any_broken, double contact_normal_pa = 0.0);
+               bool& any_broken, double contact_normal_pa, double damping_ratio,
+               double& viscous_j);
   /// Removes the flagged bonds, appending their breaks (and the pairs, which may now collide) to
   /// the given lists, and the elastic energy they release to the ledger: the bond's energy less
   /// the normal energy of the contact spring a compressed pair starts with (contact_normal_pa,
@@ -60,6 +63,11 @@ class BondSet {
   std::uint32_t second(std::size_t k) const { return j_[k]; }
 
  private:
+  template <bool kDashpots>
+  void compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,
+                    ForceView out, bool& any_broken, double contact_normal_pa,
+                    double damping_ratio, double& viscous_j);
+
   BondLaw law_;
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> rest_length_;

@@ -14,6 +14,10 @@ struct ContactLaw {
   double normal_stiffness_pa = 0.0;  ///< k_n [Pa] (N/m per metre of thickness)
   double shear_stiffness_pa = 0.0;   ///< k_s [Pa] (N/m per metre of thickness)
   double friction = 0.0;             ///< mu [-]
+  /// zeta [-] of the dashpots beside the springs (core/viscous_damping.hpp); 0: none.
+  double damping_ratio = 0.0;
+  /// mu_r [-] of the rolling spring (core/rolling_resistance.hpp); 0: none.
+  double rolling_friction = 0.0;
 };
 
 /// F_n [N/m] of a contact with overlap > 0 [m], compression positive.

@@ -6,6 +6,8 @@
 
 #include "core/bonds.hpp"
 #include "core/cell_grid.hpp"
+#include "core/rolling_resistance.hpp"
+#include "core/viscous_damping.hpp"
 
 namespace rockcut::dem {
 
@@ -24,10 +26,12 @@ void ContactList::rebuild(const Particles& p, const BondSet& bonds, double skin_
   std::iota(order_.begin(), order_.end(), 0u);
   std::sort(order_.begin(), order_.end(),
             [&](std::uint32_t a, std::uint32_t b) { return key(i_[a], j_[a]) < key(i_[b], j_[b]); });
+  old_rolling_.clear();
   for (std::uint32_t k : order_) {
-    if (shear_force_[k] != 0.0) {
+    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0) {
       old_keys_.push_back(key(i_[k], j_[k]));
       old_shear_.push_back(shear_force_[k]);
+      old_rolling_.push_back(rolling_moment_[k]);
     }
   }
 
@@ -37,6 +41,7 @@ void ContactList::rebuild(const Particles& p, const BondSet& bonds, double skin_
   i_.clear();
   j_.clear();
   shear_force_.clear();
+  rolling_moment_.clear();
   const double* x = p.position.data();
   const double* r = p.radius.data();
   grid.for_each_near_pair([&](std::uint32_t a, std::uint32_t b) {
@@ -48,9 +53,10 @@ void ContactList::rebuild(const Particles& p, const BondSet& bonds, double skin_
     i_.push_back(lo);
     j_.push_back(hi);
     const auto it = std::lower_bound(old_keys_.begin(), old_keys_.end(), key(lo, hi));
-    shear_force_.push_back(it != old_keys_.end() && *it == key(lo, hi)
-                               ? old_shear_[static_cast<std::size_t>(it - old_keys_.begin())]
-                               : 0.0);
+    const bool known = it != old_keys_.end() && *it == key(lo, hi);
+    const auto at = static_cast<std::size_t>(it - old_keys_.begin());
+    shear_force_.push_back(known ? old_shear_[at] : 0.0);
+    rolling_moment_.push_back(known ? old_rolling_[at] : 0.0);
   });
 }
 
@@ -59,17 +65,24 @@ void ContactList::add_pairs(const std::vector<std::uint32_t>& pairs) {
     i_.push_back(std::min(pairs[k], pairs[k + 1]));
     j_.push_back(std::max(pairs[k], pairs[k + 1]));
     shear_force_.push_back(0.0);
+    rolling_moment_.push_back(0.0);
   }
 }
 
-void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
-                          std::size_t begin, std::size_t end, ForceView out, double& friction_j) {
+template <bool kDashpots, bool kRolling>
+void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double dt,
+                               std::size_t begin, std::size_t end, ForceView out,
+                               ContactDissipation& sums) {
   const double* x = p.position.data();
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
+  const double* inv_m = p.inv_mass.data();
   const double kn = law.normal_stiffness_pa, ks = law.shear_stiffness_pa, mu = law.friction;
-  double friction = 0.0;
+  const double cn_scale = kDashpots ? dashpot_scale(law.damping_ratio, kn) : 0.0;
+  const double ct_scale = kDashpots ? dashpot_scale(law.damping_ratio, ks) : 0.0;
+  const double mu_r = law.rolling_friction;
+  double friction = 0.0, viscous = 0.0, rolling = 0.0;
   for (std::size_t k = begin; k < end; ++k) {
     const std::uint32_t i = i_[k], j = j_[k];
     const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
@@ -77,6 +90,7 @@ void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
     const double d2 = dx * dx + dy * dy;
     if (d2 >= rsum * rsum) {
       shear_force_[k] = 0.0;  // apart: the tangential spring is released
+      if constexpr (kRolling) rolling_moment_[k] = 0.0;
       continue;
     }
     const double len = std::sqrt(d2);
@@ -85,13 +99,52 @@ void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
     const double fn = contact_normal_force(kn, rsum - len);
     const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], nx,
                                             ny, w[i] * r[i], w[j] * r[j]);
-    const double fs = coulomb_limited(shear_spring_update(shear_force_[k], ks, vt, dt), mu * fn,
-                                      ks, friction);
+    const double trial = shear_spring_update(shear_force_[k], ks, vt, dt);
+    const double fs = coulomb_limited(trial, mu * fn, ks, friction);
     shear_force_[k] = fs;
-    const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on j
-    out.add_pair(i, j, f.fx, f.fy, -fs * r[i], -fs * r[j]);
+    double moment_i = -fs * r[i], moment_j = -fs * r[j];
+    if constexpr (kRolling) {
+      const double rr = rolling_radius(r[i], r[j]);
+      const double m = rolling_moment_update(rolling_moment_[k], ks * rr * rr, w[i] - w[j], dt,
+                                             mu_r * rr * fn, rolling);
+      rolling_moment_[k] = m;
+      moment_i += m;
+      moment_j -= m;
+    }
+    if constexpr (kDashpots) {
+      // The normal dashpot acts over the whole contact (it may pull at the end of a collision:
+      // the linear spring-dashpot whose restitution core/viscous_damping.hpp states); the
+      // tangential one while the contact sticks (sliding dissipates through friction).
+      const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
+      const double sqrt_m = sqrt_effective_mass(inv_m[i], inv_m[j]);
+      const double cn = cn_scale * sqrt_m, ct = fs == trial ? ct_scale * sqrt_m : 0.0;
+      viscous += (cn * vn * vn + ct * vt * vt) * dt;
+      const double fs_d = dashpot_force(ct, vt);
+      const PairForce f = pair_force(fn + dashpot_force(cn, vn), fs + fs_d, nx, ny, tx, ty);
+      out.add_pair(i, j, f.fx, f.fy, moment_i - fs_d * r[i], moment_j - fs_d * r[j]);
+    } else {
+      const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on j
+      out.add_pair(i, j, f.fx, f.fy, moment_i, moment_j);
+    }
   }
-  friction_j += friction;
+  sums.friction_j += friction;
+  sums.viscous_j += viscous;
+  sums.rolling_j += rolling;
+}
+
+void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
+                          std::size_t begin, std::size_t end, ForceView out,
+                          ContactDissipation& sums) {
+  const bool dashpots = law.damping_ratio > 0.0, rolling = law.rolling_friction > 0.0;
+  if (dashpots && rolling) {
+    compute_impl<true, true>(p, law, dt, begin, end, out, sums);
+  } else if (dashpots) {
+    compute_impl<true, false>(p, law, dt, begin, end, out, sums);
+  } else if (rolling) {
+    compute_impl<false, true>(p, law, dt, begin, end, out, sums);
+  } else {
+    compute_impl<false, false>(p, law, dt, begin, end, out, sums);
+  }
 }
 
 double ContactList::strain_energy(const Particles& p, const ContactLaw& law) const {
@@ -104,6 +157,10 @@ double ContactList::strain_energy(const Particles& p, const ContactLaw& law) con
     if (overlap <= 0) continue;
     e += 0.5 * law.normal_stiffness_pa * overlap * overlap +
          0.5 * shear_force_[k] * shear_force_[k] / law.shear_stiffness_pa;
+    if (rolling_moment_[k] != 0.0) {
+      const double rr = rolling_radius(p.radius[i], p.radius[j]);
+      e += rolling_energy(rolling_moment_[k], law.shear_stiffness_pa * rr * rr);
+    }
   }
   return e;
 }

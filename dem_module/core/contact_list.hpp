@@ -25,9 +25,10 @@ class ContactList {
   /// Adds the pairs of freshly broken bonds (interleaved i, j): they may collide from now on.
   void add_pairs(const std::vector<std::uint32_t>& pairs);
 
-  /// Adds contact forces for pairs [begin, end) into `out`; friction work into `friction_j`.
+  /// Adds contact forces for pairs [begin, end) into `out`, and what friction, the dashpots
+  /// (law.damping_ratio) and the rolling springs (law.rolling_friction) dissipate into `sums`.
   void compute(const Particles& p, const ContactLaw& law, double dt, std::size_t begin,
-               std::size_t end, ForceView out, double& friction_j);
+               std::size_t end, ForceView out, ContactDissipation& sums);
   /// Elastic energy in the active contacts [J/m].
   double strain_energy(const Particles& p, const ContactLaw& law) const;
 
@@ -39,11 +40,16 @@ class ContactList {
   std::uint32_t second(std::size_t k) const { return j_[k]; }
 
  private:
+  template <bool kDashpots, bool kRolling>
+  void compute_impl(const Particles& p, const ContactLaw& law, double dt, std::size_t begin,
+                    std::size_t end, ForceView out, ContactDissipation& sums);
+
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> shear_force_;  ///< along t = (-n_y, n_x), acting on j [N/m]
+  std::vector<double> rolling_moment_;  ///< rolling spring's moment on i [N m/m] (0 without)
   // Rebuild scratch, kept to avoid allocating in steady state.
   std::vector<std::uint64_t> old_keys_;
-  std::vector<double> old_shear_;
+  std::vector<double> old_shear_, old_rolling_;
   std::vector<std::uint32_t> order_;
 };
 

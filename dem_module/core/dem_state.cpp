@@ -54,12 +54,14 @@ void ContactList::save_state(StateArchive& a) const {
   a.put_values("contact_i", i_);
   a.put_values("contact_j", j_);
   a.put("contact_shear_force_n_per_m", shear_force_);
+  a.put("contact_rolling_moment_n", rolling_moment_);
 }
 
 void ContactList::load_state(const StateArchive& a, std::size_t particles) {
   a.get_values("contact_i", i_);
   a.get_values("contact_j", j_, i_.size());
   a.get("contact_shear_force_n_per_m", shear_force_, i_.size());
+  a.get("contact_rolling_moment_n", rolling_moment_, i_.size());
   check_index("contact_i", i_, particles);
   check_index("contact_j", j_, particles);
 }
@@ -79,6 +81,7 @@ void WallSet::save_state(StateArchive& a) const {
   a.put_values("wall_pair_particle", particle_);
   a.put_values("wall_pair_segment", segment_);
   a.put("wall_pair_shear_force_n_per_m", shear_force_);
+  a.put("wall_pair_rolling_moment_n", rolling_moment_);
 }
 
 void WallSet::load_state(const StateArchive& a, std::size_t particles) {
@@ -99,6 +102,7 @@ void WallSet::load_state(const StateArchive& a, std::size_t particles) {
   a.get_values("wall_pair_particle", particle_);
   a.get_values("wall_pair_segment", segment_, particle_.size());
   a.get("wall_pair_shear_force_n_per_m", shear_force_, particle_.size());
+  a.get("wall_pair_rolling_moment_n", rolling_moment_, particle_.size());
   check_index("wall_pair_particle", particle_, particles);
   check_index("wall_pair_segment", segment_, segments_.size());
 }
@@ -132,7 +136,8 @@ void DemSystem::save_state(StateArchive& a) const {
   a.put("break_pair", break_pair, 2);
   a.put("ledger_j", std::vector<double>{ledger_.boundary_work_j, ledger_.external_work_j,
                                         ledger_.gravity_work_j, ledger_.damping_j,
-                                        ledger_.friction_j, ledger_.broken_bond_j});
+                                        ledger_.friction_j, ledger_.broken_bond_j,
+                                        ledger_.viscous_damping_j, ledger_.rolling_j});
   a.put_scalar("max_drift_m", max_drift_m_);
   a.put_scalar("dt_last_s", dt_last_);
   a.put_scalar("time_s", time_s_);
@@ -176,8 +181,9 @@ void DemSystem::load_state(const StateArchive& a) {
     }
     breaks_.push_back({modes[k], time[k], xy[2 * k], xy[2 * k + 1], pairs[2 * k], pairs[2 * k + 1]});
   }
-  const auto ledger = a.values("ledger_j", 6);
-  ledger_ = {ledger[0], ledger[1], ledger[2], ledger[3], ledger[4], ledger[5]};
+  const auto ledger = a.values("ledger_j", 8);
+  ledger_ = {ledger[0], ledger[1], ledger[2], ledger[3],
+             ledger[4], ledger[5], ledger[6], ledger[7]};
   max_drift_m_ = a.scalar("max_drift_m");
   dt_last_ = a.scalar("dt_last_s");
   time_s_ = a.scalar("time_s");

@@ -98,7 +98,9 @@ ThreadSums DemSystem::total_sums() const {
     total.external_work_j += s.external_work_j;
     total.gravity_work_j += s.gravity_work_j;
     total.damping_j += s.damping_j;
-    total.friction_j += s.friction_j;
+    total.pairs.friction_j += s.pairs.friction_j;
+    total.pairs.viscous_j += s.pairs.viscous_j;
+    total.pairs.rolling_j += s.pairs.rolling_j;
     total.any_broken = total.any_broken || s.any_broken;
   }
   return total;
@@ -108,7 +110,9 @@ void DemSystem::book(const ThreadSums& s) {
   ledger_.external_work_j += s.external_work_j;
   ledger_.gravity_work_j += s.gravity_work_j;
   ledger_.damping_j += s.damping_j;
-  ledger_.friction_j += s.friction_j;
+  ledger_.friction_j += s.pairs.friction_j;
+  ledger_.viscous_damping_j += s.pairs.viscous_j;
+  ledger_.rolling_j += s.pairs.rolling_j;
 }
 
 void DemSystem::start_sums(int threads) {
@@ -178,16 +182,20 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
   const ForceView out = buffers_.view(t, particles_, p0, p1);
   const auto [b0, b1] = share(bonds_.size(), t, threads);
   bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken,
-                 settings_.contact.normal_stiffness_pa);
+                 settings_.contact.normal_stiffness_pa, settings_.bond_damping_ratio,
+                 sums.pairs.viscous_j);
   if (settings_.contact.normal_stiffness_pa > 0) {
     const auto [c0, c1] = share(contacts_.size(), t, threads);
-    contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, sums.friction_j);
+    contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, sums.pairs);
   }
   // Thread 0 adds the walls, through its view like its pairs; the ledger is written by this
-  // thread alone inside the region.
+  // thread alone inside the region (in place, so its sums keep their order of additions).
   if (t == 0 && !walls_.empty()) {
-    walls_.compute(particles_, settings_.contact, dt, out, ledger_.boundary_work_j,
-                   ledger_.friction_j);
+    ContactDissipation walls{ledger_.friction_j, ledger_.viscous_damping_j, ledger_.rolling_j};
+    walls_.compute(particles_, settings_.contact, dt, out, ledger_.boundary_work_j, walls);
+    ledger_.friction_j = walls.friction_j;
+    ledger_.viscous_damping_j = walls.viscous_j;
+    ledger_.rolling_j = walls.rolling_j;
   }
 }
 

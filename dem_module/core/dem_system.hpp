@@ -32,7 +32,10 @@ struct DemSettings {
   double gravity_x_m_s2 = 0.0;
   double gravity_y_m_s2 = 0.0;
   ContactLaw contact;          ///< all-zero stiffness: discs pass through each other (no contacts)
-  double local_damping = 0.0;  ///< alpha_d of eq. 10 (Potyondy & Cundall 2004)
+  double local_damping = 0.0;  ///< alpha_d of eq. 10 (Potyondy & Cundall 2004); 0: none
+  /// zeta of the bonds' dashpots (core/viscous_damping.hpp); contact.damping_ratio is the
+  /// contacts' and the walls'. 0: none.
+  double bond_damping_ratio = 0.0;
   double skin_m = 0.0;         ///< Verlet skin of the neighbour list; 0: chosen from the radii
   int threads = 1;             ///< OpenMP threads of the pair loops
   std::optional<PrescribedMotion> prescribed_motion;
@@ -51,7 +54,8 @@ struct ClampedGroup {
 /// same thread count gives the same bits. A cache line each, so the threads do not share one.
 struct alignas(64) ThreadSums {
   double vmax2 = 0.0;  ///< largest v^2 [m^2/s^2]
-  double external_work_j = 0.0, gravity_work_j = 0.0, damping_j = 0.0, friction_j = 0.0;
+  double external_work_j = 0.0, gravity_work_j = 0.0, damping_j = 0.0;
+  ContactDissipation pairs;  ///< friction, dashpots, rolling springs
   bool any_broken = false;
 };
 

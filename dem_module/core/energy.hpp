@@ -1,6 +1,7 @@
 // Energy bookkeeping for the budget of DESIGN section 5 (per metre of thickness):
 //   work in (walls, tool, external force, gravity) = kinetic + strain + damping + friction
-//                                                     + energy of broken bonds.
+//                                                     + energy of broken bonds + dashpots
+//                                                     + rolling resistance.
 // The step loop adds to these with OpenMP reductions; nothing is computed that is not asked for
 // elsewhere.
 #pragma once
@@ -14,6 +15,15 @@ struct EnergyLedger {
   double damping_j = 0.0;         ///< dissipated by local damping (>= 0)
   double friction_j = 0.0;        ///< dissipated by sliding contacts (>= 0)
   double broken_bond_j = 0.0;     ///< released by bond breaks (less what a contact keeps)
+  double viscous_damping_j = 0.0; ///< dissipated by the dashpots (>= 0)
+  double rolling_j = 0.0;         ///< dissipated by rolling springs cut to their limit (>= 0)
+};
+
+/// What a pass over contacts dissipates [J/m], summed per thread.
+struct ContactDissipation {
+  double friction_j = 0.0;
+  double viscous_j = 0.0;
+  double rolling_j = 0.0;
 };
 
 }  // namespace rockcut::dem

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/rolling_resistance.hpp"
+#include "core/viscous_damping.hpp"
+
 namespace rockcut::dem {
 
 namespace {
@@ -59,15 +62,18 @@ void WallSet::rebuild(const Particles& p, double skin_m) {
   // order, so the keys come out sorted); member buffers: no allocation in steady state.
   old_keys_.clear();
   old_shear_.clear();
+  old_rolling_.clear();
   for (std::size_t k = 0; k < particle_.size(); ++k) {
-    if (shear_force_[k] != 0.0) {
+    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0) {
       old_keys_.push_back((static_cast<std::uint64_t>(segment_[k]) << 32) | particle_[k]);
       old_shear_.push_back(shear_force_[k]);
+      old_rolling_.push_back(rolling_moment_[k]);
     }
   }
   particle_.clear();
   segment_.clear();
   shear_force_.clear();
+  rolling_moment_.clear();
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     offset_at_rebuild_[2 * b] = bodies_[b].offset_x;
     offset_at_rebuild_[2 * b + 1] = bodies_[b].offset_y;
@@ -88,21 +94,20 @@ void WallSet::rebuild(const Particles& p, double skin_m) {
       segment_.push_back(s);
       const std::uint64_t key = (static_cast<std::uint64_t>(s) << 32) | i;
       const auto it = std::lower_bound(old_keys_.begin(), old_keys_.end(), key);
-      shear_force_.push_back(it != old_keys_.end() && *it == key
-                                 ? old_shear_[static_cast<std::size_t>(it - old_keys_.begin())]
-                                 : 0.0);
+      const bool known = it != old_keys_.end() && *it == key;
+      const auto at = static_cast<std::size_t>(it - old_keys_.begin());
+      shear_force_.push_back(known ? old_shear_[at] : 0.0);
+      rolling_moment_.push_back(known ? old_rolling_[at] : 0.0);
     }
   }
 }
 
-void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, ForceView out,
-                      double& boundary_work_j, double& friction_j) {
-  for (WallBody& b : bodies_) {
-    b.previous_force_x = b.force_x;
-    b.previous_force_y = b.force_y;
-    b.force_x = b.force_y = 0.0;
-  }
+template <bool kDashpots, bool kRolling>
+void WallSet::compute_impl(const Particles& p, const ContactLaw& law, double dt, ForceView out,
+                           ContactDissipation& sums) {
   const double kn = law.normal_stiffness_pa, ks = law.shear_stiffness_pa, mu = law.friction;
+  const double cn_scale = kDashpots ? dashpot_scale(law.damping_ratio, kn) : 0.0;
+  const double ct_scale = kDashpots ? dashpot_scale(law.damping_ratio, ks) : 0.0;
   for (std::size_t k = 0; k < particle_.size(); ++k) {
     const std::uint32_t i = particle_[k];
     const Segment& seg = segments_[segment_[k]];
@@ -114,6 +119,7 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     const double d2 = dx * dx + dy * dy;
     if (d2 >= r * r || d2 == 0.0) {
       shear_force_[k] = 0.0;
+      if constexpr (kRolling) rolling_moment_[k] = 0.0;
       continue;
     }
     const double dist = std::sqrt(d2);
@@ -121,18 +127,55 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     const double tx = -ny, ty = nx;
     const double fn = contact_normal_force(kn, r - dist);
     // Disc contact point relative to the wall, rotation included (the wall does not spin).
-    const double vt =
-        shear_spring_velocity(p.velocity[2 * i] - b.velocity_x, p.velocity[2 * i + 1] - b.velocity_y,
-                              nx, ny, p.angular_velocity[i] * r, 0.0);
+    const double dvx = p.velocity[2 * i] - b.velocity_x, dvy = p.velocity[2 * i + 1] - b.velocity_y;
+    const double vt = shear_spring_velocity(dvx, dvy, nx, ny, p.angular_velocity[i] * r, 0.0);
     const double limit = (b.friction >= 0.0 ? b.friction : mu) * fn;
-    const double fs =
-        coulomb_limited(shear_spring_update(shear_force_[k], ks, vt, dt), limit, ks, friction_j);
+    const double trial = shear_spring_update(shear_force_[k], ks, vt, dt);
+    const double fs = coulomb_limited(trial, limit, ks, sums.friction_j);
     shear_force_[k] = fs;
-    const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on the disc
+    double moment = -fs * r;
+    if constexpr (kRolling) {  // against a wall R_r = r and w_j = 0
+      const double m = rolling_moment_update(rolling_moment_[k], ks * r * r,
+                                             p.angular_velocity[i], dt,
+                                             law.rolling_friction * r * fn, sums.rolling_j);
+      rolling_moment_[k] = m;
+      moment += m;
+    }
+    double fn_total = fn, fs_total = fs;
+    if constexpr (kDashpots) {  // as the contacts' (core/contact_list.cpp), m_eff = m_i
+      const double vn = dvx * nx + dvy * ny;
+      const double sqrt_m = sqrt_effective_mass(p.inv_mass[i], 0.0);
+      const double cn = cn_scale * sqrt_m, ct = fs == trial ? ct_scale * sqrt_m : 0.0;
+      sums.viscous_j += (cn * vn * vn + ct * vt * vt) * dt;
+      const double fs_d = dashpot_force(ct, vt);
+      fn_total += dashpot_force(cn, vn);
+      fs_total += fs_d;
+      moment -= fs_d * r;
+    }
+    const PairForce f = pair_force(fn_total, fs_total, nx, ny, tx, ty);  // on the disc
     const double fx = f.fx, fy = f.fy;
-    out.add(i, fx, fy, -fs * r);
+    out.add(i, fx, fy, moment);
     b.force_x -= fx;
     b.force_y -= fy;
+  }
+}
+
+void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, ForceView out,
+                      double& boundary_work_j, ContactDissipation& sums) {
+  for (WallBody& b : bodies_) {
+    b.previous_force_x = b.force_x;
+    b.previous_force_y = b.force_y;
+    b.force_x = b.force_y = 0.0;
+  }
+  const bool dashpots = law.damping_ratio > 0.0, rolling = law.rolling_friction > 0.0;
+  if (dashpots && rolling) {
+    compute_impl<true, true>(p, law, dt, out, sums);
+  } else if (dashpots) {
+    compute_impl<true, false>(p, law, dt, out, sums);
+  } else if (rolling) {
+    compute_impl<false, true>(p, law, dt, out, sums);
+  } else {
+    compute_impl<false, false>(p, law, dt, out, sums);
   }
   // Work of each body on the discs over the last drift: the trapezoid of its force, as Verlet
   // moves under the mean of the forces at both ends of a step.
@@ -160,6 +203,10 @@ double WallSet::strain_energy(const Particles& p, const ContactLaw& law) const {
     e += 0.5 * law.normal_stiffness_pa * overlap * overlap;
     if (law.shear_stiffness_pa > 0) {
       e += 0.5 * shear_force_[k] * shear_force_[k] / law.shear_stiffness_pa;
+    }
+    if (rolling_moment_[k] != 0.0) {
+      const double r = p.radius[particle_[k]];
+      e += rolling_energy(rolling_moment_[k], law.shear_stiffness_pa * r * r);
     }
   }
   return e;

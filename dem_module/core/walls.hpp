@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/energy.hpp"
 #include "core/force_buffers.hpp"
 #include "core/interaction_law.hpp"
 #include "core/particles.hpp"
@@ -50,9 +51,10 @@ class WallSet {
   /// Lists the (disc, segment) pairs closer than r + skin, keeping their tangential history.
   void rebuild(const Particles& p, double skin_m);
   /// Adds wall forces on the discs into `out`, sets each body's force, and adds the work the
-  /// bodies did on the discs over dt to `boundary_work_j` and friction work to `friction_j`.
+  /// bodies did on the discs over dt to `boundary_work_j` and what friction, the dashpots and
+  /// the rolling springs dissipated to `sums`.
   void compute(const Particles& p, const ContactLaw& law, double dt, ForceView out,
-               double& boundary_work_j, double& friction_j);
+               double& boundary_work_j, ContactDissipation& sums);
   /// Elastic energy in the disc-wall contacts [J/m] (normal and tangential springs).
   double strain_energy(const Particles& p, const ContactLaw& law) const;
   /// Largest overlap of a disc with a wall as a ratio of its radius; `particle` gets the disc.
@@ -62,6 +64,9 @@ class WallSet {
   void load_state(const state::StateArchive& a, std::size_t particles);
 
  private:
+  template <bool kDashpots, bool kRolling>
+  void compute_impl(const Particles& p, const ContactLaw& law, double dt, ForceView out,
+                    ContactDissipation& sums);
   /// Overlap of listed pair k (disc radius minus its distance to the moved segment) [m].
   double pair_overlap(const Particles& p, std::size_t k) const;
 
@@ -70,8 +75,9 @@ class WallSet {
   std::vector<double> offset_at_rebuild_;  // 2 per body
   std::vector<std::uint32_t> particle_, segment_;
   std::vector<double> shear_force_;
+  std::vector<double> rolling_moment_;  ///< rolling spring's moment on the disc [N m/m]
   std::vector<std::uint64_t> old_keys_;  // rebuild scratch
-  std::vector<double> old_shear_;
+  std::vector<double> old_shear_, old_rolling_;
 };
 
 }  // namespace rockcut::dem

@@ -245,7 +245,8 @@ void DemService::report(wire::Message& reply) {
   // the energy throughput, so that work given and taken back (a fluid force) counts both ways.
   const double given =
       setup_.initial_energy_j + e.boundary_work_j + e.external_work_j + e.gravity_work_j;
-  const double held = kinetic + strain + e.damping_j + e.friction_j + e.broken_bond_j;
+  const double held = kinetic + strain + e.damping_j + e.friction_j + e.broken_bond_j +
+                      e.viscous_damping_j + e.rolling_j;
   const double throughput =
       setup_.initial_energy_j + std::abs(e.boundary_work_j) + std::abs(e.external_work_j) +
       std::abs(e.gravity_work_j);
@@ -257,6 +258,8 @@ void DemService::report(wire::Message& reply) {
   out["damping_j"] = e.damping_j;
   out["friction_j"] = e.friction_j;
   out["broken_bond_j"] = e.broken_bond_j;
+  out["viscous_damping_j"] = e.viscous_damping_j;
+  out["rolling_j"] = e.rolling_j;
   out["bonds"] = static_cast<double>(s.bonds().size());
   std::size_t tensile = 0;
   for (const BondBreak& b : s.breaks()) tensile += b.mode == BreakMode::tensile;

@@ -9,6 +9,7 @@
 #include "core/lattice.hpp"
 #include "core/packing_file.hpp"
 #include "core/specimen_generator.hpp"
+#include "core/viscous_damping.hpp"
 
 namespace rockcut::dem {
 
@@ -231,6 +232,24 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
 
 }  // namespace
 
+DampingChoice damping_choice(const rockcut::Dem& dem) {
+  const rockcut::Damping& d = dem.damping();
+  const std::string& model = d.model();
+  DampingChoice choice;
+  if (model == "local" || model == "local+viscous") choice.local_coefficient = d.local_coefficient();
+  if (model == "viscous" || model == "local+viscous") {
+    if (d.has_restitution() && d.has_damping_ratio()) {
+      throw std::invalid_argument(
+          "dem.damping: give damping_ratio or restitution, not both (restitution " +
+          std::to_string(d.restitution()) + " means damping_ratio " +
+          std::to_string(damping_ratio_from_restitution(d.restitution())) + ")");
+    }
+    choice.damping_ratio =
+        d.has_restitution() ? damping_ratio_from_restitution(d.restitution()) : d.damping_ratio();
+  }
+  return choice;
+}
+
 DemSetup build_dem(const rockcut::Dem& dem) {
   DemSetup setup;
   Particles particles = particles_from_scene(dem, setup.specimen_report);
@@ -245,12 +264,15 @@ DemSetup build_dem(const rockcut::Dem& dem) {
   DemSettings settings;
   settings.gravity_x_m_s2 = dem.gravity_m_s2().x();
   settings.gravity_y_m_s2 = dem.gravity_m_s2().y();
-  settings.local_damping = dem.local_damping();
+  const DampingChoice damping = damping_choice(dem);
+  settings.local_damping = damping.local_coefficient;
+  settings.bond_damping_ratio = damping.damping_ratio;
   settings.skin_m = dem.skin_m();
   settings.threads = static_cast<int>(dem.threads());
   if (dem.has_contact()) {
     settings.contact = {dem.contact().normal_stiffness_pa(), dem.contact().shear_stiffness_pa(),
-                        dem.contact().friction()};
+                        dem.contact().friction(), damping.damping_ratio,
+                        dem.contact().rolling_friction()};
   }
   if (dem.has_prescribed_motion()) {
     const rockcut::PrescribedMotion& m = dem.prescribed_motion();
@@ -311,7 +333,8 @@ DemSetup build_dem(const rockcut::Dem& dem) {
     throw std::invalid_argument("dem.walls need dem.contact: walls push discs by contact");
   }
   setup.critical = critical_step(particles, dem.has_contact() || dem.has_bonds() ? kn : 0.0,
-                                 dem.has_contact() || dem.has_bonds() ? ks : 0.0);
+                                 dem.has_contact() || dem.has_bonds() ? ks : 0.0,
+                                 damping.damping_ratio, settings.contact.rolling_friction > 0);
   setup.system = std::make_unique<DemSystem>(std::move(particles), settings, std::move(bonds),
                                              std::move(walls));
   if (setup.rig.clamped_ends) {
@@ -349,7 +372,12 @@ DemSetup build_dem(const rockcut::Dem& dem) {
 rockcut::wire::SolidProperties solid_properties(const rockcut::Dem& dem) {
   rockcut::wire::SolidProperties solid;
   solid.set_grain_density_kg_m3(dem.density_kg_m3());
-  solid.set_local_damping(dem.local_damping());
+  const DampingChoice damping = damping_choice(dem);
+  solid.set_local_damping(damping.local_coefficient);
+  solid.set_viscous_damping_ratio(damping.damping_ratio);
+  double kn = dem.has_contact() ? dem.contact().normal_stiffness_pa() : 0.0;
+  if (dem.has_bonds()) kn = std::max(kn, dem.bonds().normal_stiffness_pa());
+  solid.set_normal_stiffness_pa(kn);
   solid.set_dynamic(!dem.has_prescribed_motion());
   // The walls and the tool the scene writes; a loading test's platens are not counted (no scene
   // puts a pore fluid between platens).

@@ -65,6 +65,15 @@ struct DemSetup {
 
 /// Builds the DEM of the scene's `dem` block. Throws std::invalid_argument naming the field for
 /// inconsistent input (radius_min_m > radius_max_m, a tool outside the specimen, ...).
+/// The damping the scene's dem.damping asks for, as the step loop takes it: alpha_d of eq. 10 and
+/// the dashpots' zeta, each 0 when the model leaves it out. Throws std::invalid_argument when both
+/// damping_ratio and restitution are given.
+struct DampingChoice {
+  double local_coefficient = 0.0;
+  double damping_ratio = 0.0;
+};
+DampingChoice damping_choice(const rockcut::Dem& dem);
+
 DemSetup build_dem(const rockcut::Dem& dem);
 
 /// What the fluid needs to know of this solid (wire.proto, SolidProperties): sent in InitReply

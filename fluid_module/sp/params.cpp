@@ -35,6 +35,8 @@ SpParams sp_params_from_config(const wire::FluidConfig& config) {
   p.grain_density_kg_m3 = solid.grain_density_kg_m3();
   p.dynamic_solid = solid.dynamic();
   p.local_damping = solid.local_damping();
+  p.viscous_damping_ratio = solid.viscous_damping_ratio();
+  p.normal_stiffness_pa = solid.normal_stiffness_pa();
   p.cavitation = f.cavitation();
   p.p_min_pa = f.cavitation_pressure_pa();
   p.strain_from = f.strain_from() == "velocity_half" ? StrainFrom::velocity_half

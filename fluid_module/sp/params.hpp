@@ -36,6 +36,8 @@ struct SpParams {
   double grain_density_kg_m3 = 2800.0;
   bool dynamic_solid = false;
   double local_damping = 0.7;          ///< the DEM's alpha_d (eq. 10): removes the lag's energy
+  double viscous_damping_ratio = 0.0;  ///< the DEM's dashpots' zeta: they remove it too
+  double normal_stiffness_pa = 0.0;    ///< the DEM's stiffest normal spring k_n (the dashpots' c)
   bool cavitation = true;
   double p_min_pa = 2340.0;            ///< eq. 22
   StrainFrom strain_from = StrainFrom::displacement;

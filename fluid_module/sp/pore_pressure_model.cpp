@@ -44,12 +44,23 @@ std::vector<StabilityLimit> PorePressureModel::limits() const {
   if (!params_.dynamic_solid || radius_.empty() || !(stiffness > 0.0)) return out;
   const double r_min = *std::min_element(radius_.begin(), radius_.end());
   const double m_min = params_.grain_density_kg_m3 * std::numbers::pi * r_min * r_min;
-  const double dt = kFluidStiffnessC * params_.local_damping * std::sqrt(m_min / stiffness);
-  out.push_back({"pore_fluid_stiffness", dt,
-                 "lagged fluid force: C alpha_d sqrt(m_min / (alpha M)) with C = " +
-                     fmt(kFluidStiffnessC) + ", local damping alpha_d = " +
-                     fmt(params_.local_damping) + ", m_min = " + fmt(m_min) +
-                     " kg/m, alpha M = " + fmt(stiffness) + " Pa; binds only N > 1",
+  const double local_dt = kFluidStiffnessC * params_.local_damping * std::sqrt(m_min / stiffness);
+  const double viscous_dt = kFluidViscousC * params_.viscous_damping_ratio *
+                            std::sqrt(m_min * params_.normal_stiffness_pa) / stiffness;
+  std::string formula = "lagged fluid force: ";
+  if (params_.viscous_damping_ratio > 0.0) {
+    formula += "C alpha_d sqrt(m_min / (alpha M)) + C_v zeta sqrt(m_min k_n) / (alpha M) with C = " +
+               fmt(kFluidStiffnessC) + ", local damping alpha_d = " + fmt(params_.local_damping) +
+               ", C_v = " + fmt(kFluidViscousC) + ", dashpots zeta = " +
+               fmt(params_.viscous_damping_ratio) + ", k_n = " + fmt(params_.normal_stiffness_pa) +
+               " Pa";
+  } else {
+    formula += "C alpha_d sqrt(m_min / (alpha M)) with C = " + fmt(kFluidStiffnessC) +
+               ", local damping alpha_d = " + fmt(params_.local_damping);
+  }
+  out.push_back({"pore_fluid_stiffness", local_dt + viscous_dt,
+                 formula + ", m_min = " + fmt(m_min) + " kg/m, alpha M = " + fmt(stiffness) +
+                     " Pa; binds only N > 1",
                  /*lag_only=*/true, /*remedy=*/{}, LimitKind::pore_fluid_stiffness});
   return out;
 }

@@ -25,12 +25,17 @@ namespace rockcut::fluid::sp {
 
 /// Lagged fluid force (N > 1): the force computed at an exchange is held for the N DEM steps of
 /// the fluid step. Undrained, the pore fluid stiffens each grain by about k_f = alpha M (eqs. 14
-/// and 21), and a spring force lagged by ~dt_f / 2 is a negative damping that local damping must
-/// outweigh. Hence the limit
-///   dt_f <= kFluidStiffnessC * local_damping * sqrt(m_min / (alpha M)),
-/// a factor 2 below the smallest unstable step measured (2000 m, damping 0.7; docs/model.md). It
-/// binds only N > 1: N = 1 is always allowed, also without damping.
+/// and 21), and a spring force lagged by ~dt_f / 2 is a negative damping of about k_f dt_f / 2
+/// that the DEM's damping must outweigh. Local damping (eq. 10) is worth about alpha_d m omega_f
+/// with omega_f = sqrt(k_f / m); a dashpot of ratio zeta on a grain's normal spring k_n is worth
+/// c = 2 zeta sqrt(m_eff k_n). Hence the limit, the two terms adding when both act,
+///   dt_f <= kFluidStiffnessC * alpha_d * sqrt(m_min / (alpha M))
+///         + kFluidViscousC * zeta * sqrt(m_min k_n) / (alpha M),
+/// each constant a factor 2 below the smallest unstable step measured (local: 2000 m, alpha_d
+/// 0.7; viscous: docs/model.md, "Damping"). It binds only N > 1: N = 1 is always allowed, also
+/// without damping.
 inline constexpr double kFluidStiffnessC = 1.5;
+inline constexpr double kFluidViscousC = 1.4;
 
 /// A local geometry refresh (docs/model.md, "Reusing the geometry") moves the particles that
 /// have moved more than this fraction of fluid.geometry_refresh_distance, not only the one that

@@ -30,7 +30,7 @@ TEST(EnergyBudget, ACutsToolWorkSplitsIntoItsSinksAndTheFluidIsOneOfThem) {
   EXPECT_DOUBLE_EQ(b->input_j(), 100.0);
   // summary.json's terms: the ledger's own names and values, the imbalance left out.
   const auto terms = b->terms();
-  ASSERT_EQ(terms.size(), 8u);
+  ASSERT_EQ(terms.size(), 10u);
   EXPECT_STREQ(terms[3].first, "damping_j");
   EXPECT_EQ(terms[3].second, 70.0);
   EXPECT_STREQ(terms[1].first, "external_work_j");
@@ -53,6 +53,20 @@ TEST(EnergyBudget, InitialEnergyAndAGivingExternalForceCountAsInput) {
             std::string::npos) << line;
   EXPECT_NE(line.find("local damping 69.7 %"), std::string::npos) << line;  // 70 / 100.5
   EXPECT_EQ(line.find("external force 0"), std::string::npos) << line;      // not a sink
+}
+
+TEST(EnergyBudget, DashpotsAndRollingResistanceAreSinksOfTheirOwn) {
+  // Tool 100 J/m in; dashpots 12, rolling 5, friction 15, bonds 3, kinetic + strain 2, and the
+  // fluid 63: with no local damping its share is left out, the dashpots' named instead.
+  auto scalars = ledger(100.0, -63.0, 0.0, 1.0);
+  scalars.push_back({"viscous_damping_j", 12.0});
+  scalars.push_back({"rolling_j", 5.0});
+  const auto b = energy_budget(scalars);
+  ASSERT_TRUE(b.has_value());
+  EXPECT_EQ(b->initial_j(), 0.0);
+  EXPECT_EQ(describe(*b, "pore fluid"),
+            "in: walls and tool 100 J/m; out: viscous damping 12.0 %, friction 15.0 %, rolling "
+            "resistance 5.0 %, pore fluid 63.0 %, broken bonds 3.0 %, kinetic + strain 2.0 %");
 }
 
 TEST(EnergyBudget, NoneWithoutTheLedgerAndNothingWhenNothingCameIn) {

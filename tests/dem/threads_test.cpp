@@ -13,14 +13,25 @@
 namespace rockcut::dem {
 namespace {
 
-DemSystem loaded_block(int threads) {
+// The pair laws the thread contracts must hold for: local damping alone (the paper's), and
+// dashpots with rolling springs (each a templated variant of the pair loops).
+struct Laws {
+  double local_damping = 0.1;
+  double damping_ratio = 0.0;
+  double rolling_friction = 0.0;
+};
+const Laws kLocal{};
+const Laws kDashpotsAndRolling{0.0, 0.1, 0.1};
+
+DemSystem loaded_block(int threads, const Laws& laws = kLocal) {
   Particles p = test::hex_block(30, 20, 1e-3);
   std::mt19937_64 rng(3);
   for (double& v : p.velocity) v = 0.05 * ((rng() >> 11) * 0x1.0p-53 - 0.5);
   BondSet bonds = test::bond_all_touching(p, {1e10, 2.5e10, 2e3, 4e3});  // weak: bonds break
   DemSettings s;
-  s.contact = {1e10, 2.5e10, 0.5};
-  s.local_damping = 0.1;
+  s.contact = {1e10, 2.5e10, 0.5, laws.damping_ratio, laws.rolling_friction};
+  s.local_damping = laws.local_damping;
+  s.bond_damping_ratio = laws.damping_ratio;
   s.threads = threads;
   WallSet walls;
   walls.add_body("press", {-0.001, 0.0, -0.001, 0.04}, false, 2.0, 0.0);  // pushes from the left
@@ -37,13 +48,14 @@ TEST(Threads, TwoAndThreeThreadsGiveTheSameRunAsOne) {
   // window too narrow drops forces (and leaves them to pile up in the buffer); three threads give
   // the middle one foreign particles on both sides, and the press on the left edge makes thread
   // 0's window reach across every other thread's rows.
-  DemSystem one = loaded_block(1);
+  for (const Laws& laws : {kLocal, kDashpotsAndRolling}) {
+  DemSystem one = loaded_block(1, laws);
   run(one);
   ASSERT_GT(one.breaks().size(), 0u) << "the test should exercise bond breaks";
   for (int threads : {2, 3}) {
-    DemSystem many = loaded_block(threads);
+    DemSystem many = loaded_block(threads, laws);
     // The first evaluation, at the same positions: the forces agree to round-off of their sums.
-    const DemSystem first = loaded_block(1);
+    const DemSystem first = loaded_block(1, laws);
     for (std::size_t k = 0; k < first.particles().force.size(); ++k) {
       ASSERT_NEAR(first.particles().force[k], many.particles().force[k],
                   1e-12 * (1.0 + std::abs(first.particles().force[k])))
@@ -59,16 +71,19 @@ TEST(Threads, TwoAndThreeThreadsGiveTheSameRunAsOne) {
           << k << ", " << threads << " threads";
     }
   }
+  }
 }
 
 TEST(Threads, SameThreadCountReproducesBitForBit) {
-  DemSystem a = loaded_block(2), b = loaded_block(2);
-  run(a);
-  run(b);
-  const auto& pa = a.particles().position;
-  const auto& pb = b.particles().position;
-  EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(double)), 0);
-  EXPECT_EQ(a.walls().bodies()[0].force_x, b.walls().bodies()[0].force_x);
+  for (const Laws& laws : {kLocal, kDashpotsAndRolling}) {
+    DemSystem a = loaded_block(2, laws), b = loaded_block(2, laws);
+    run(a);
+    run(b);
+    const auto& pa = a.particles().position;
+    const auto& pb = b.particles().position;
+    EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(double)), 0);
+    EXPECT_EQ(a.walls().bodies()[0].force_x, b.walls().bodies()[0].force_x);
+  }
 }
 
 TEST(Threads, OneRegionStepEqualsTheSplitStepBitForBit) {
@@ -76,8 +91,9 @@ TEST(Threads, OneRegionStepEqualsTheSplitStepBitForBit) {
   // split step (begin_step, internal forces, finish_step) runs the same passes on the same
   // particle and pair shares in three regions. The motion must agree to the bit for either
   // thread count, through bond breaks and neighbour rebuilds.
+  for (const Laws& laws : {kLocal, kDashpotsAndRolling})
   for (int threads : {1, 2}) {
-    DemSystem full = loaded_block(threads), split = loaded_block(threads);
+    DemSystem full = loaded_block(threads, laws), split = loaded_block(threads, laws);
     const std::vector<double> none(full.particles().position.size(), 0.0);
     for (int k = 0; k < 1500; ++k) {
       full.step(2e-8);
@@ -100,6 +116,8 @@ TEST(Threads, OneRegionStepEqualsTheSplitStepBitForBit) {
                 1e-12 * std::abs(split.ledger().damping_j));
     EXPECT_NEAR(full.ledger().boundary_work_j, split.ledger().boundary_work_j,
                 1e-12 * std::abs(split.ledger().boundary_work_j));
+    EXPECT_NEAR(full.ledger().viscous_damping_j, split.ledger().viscous_damping_j,
+                1e-12 * std::abs(split.ledger().viscous_damping_j));
   }
 }
 

@@ -26,7 +26,7 @@ wire::FluidConfig fluid_config(const rockcut::Scene& scene) {
   config.set_water_depth_m(scene.water_depth_m());
   wire::SolidProperties* solid = config.mutable_solid();
   solid->set_grain_density_kg_m3(scene.dem().density_kg_m3());
-  solid->set_local_damping(scene.dem().local_damping());
+  solid->set_local_damping(scene.dem().damping().local_coefficient());
   solid->set_dynamic(!scene.dem().has_prescribed_motion());
   solid->set_seals_at_walls(scene.dem().walls_size() > 0 || scene.dem().has_tool());
   return config;

@@ -38,7 +38,7 @@ Summary run_lattice_ucs(const std::string& name, double kn, double ks, bool clam
          "  contact { normal_stiffness_pa: " << kn << " shear_stiffness_pa: " << ks << " friction: 1 }\n"
          "  bonds { normal_stiffness_pa: " << kn << " shear_stiffness_pa: " << ks
       << " tensile_strength_n_per_m: 1e9 shear_strength_n_per_m: 1e9 }\n"
-         "  local_damping: 0.7\n"
+         "  damping { local_coefficient: 0.7 }\n"
          "  loading_test { kind: \"ucs\" platen_speed_m_s: 0.02 platen_friction: 0 "
       << "clamp_end_layers: " << (clamp ? "true" : "false") << " }\n"
          "}\n";

@@ -37,7 +37,7 @@ Crushed crush_lattice(const std::string& name, bool clamp) {
          "  contact { normal_stiffness_pa: 2.5e10 shear_stiffness_pa: 1e10 friction: 1 }\n"
          "  bonds { normal_stiffness_pa: 2.5e10 shear_stiffness_pa: 1e10\n"
          "          tensile_strength_n_per_m: 1e4 shear_strength_n_per_m: 1e4 }\n"
-         "  local_damping: 0.7\n"
+         "  damping { local_coefficient: 0.7 }\n"
          "  loading_test { kind: \"ucs\" platen_speed_m_s: 0.02 platen_friction: 0 clamp_end_layers: "
       << (clamp ? "true" : "false") << " }\n}\n";
   const CouplerRun r = run_coupler(scene.string(), {}, dir, std::chrono::milliseconds(60000));

@@ -82,7 +82,7 @@ TEST(GuardsRun, InfiniteStateStopsTheRunAtOnce) {
 // past the refusal with time.ignore_limits) gains energy every step.
 TEST(GuardsRun, RunawayKineticEnergyStopsAStepAboveTheLimit) {
   const std::string scene = lattice_scene(
-      "  local_damping: 0\n  initial_velocity_m_s { x: 0.01 y: 0.02 }\n"
+      "  damping { model: \"none\" }\n  initial_velocity_m_s { x: 0.01 y: 0.02 }\n"
       "  walls { name: \"box\" closed: true vertex_m { x: -0.0011 y: -0.0011 }"
       " vertex_m { x: 0.0191 y: -0.0011 } vertex_m { x: 0.0191 y: 0.0191 }"
       " vertex_m { x: -0.0011 y: 0.0191 } }\n",

@@ -239,9 +239,9 @@ TEST(Restart, RefusesChangedScenesAndBadCheckpointsAndFallsBackToTheLastGoodOne)
   EXPECT_NE(err.find("no checkpoint to resume from"), std::string::npos) << err;
 
   // A physics field changed through --set: refused by every checkpoint, naming the field.
-  EXPECT_EQ(resume(r.out, {"--set", "dem.local_damping=0.5"}, dir, "physics", &err),
+  EXPECT_EQ(resume(r.out, {"--set", "dem.damping.local_coefficient=0.5"}, dir, "physics", &err),
             kExitBadInput);
-  EXPECT_NE(err.find("local_damping"), std::string::npos) << err;
+  EXPECT_NE(err.find("local_coefficient"), std::string::npos) << err;
   EXPECT_NE(err.find("no usable checkpoint; nothing in it was changed"), std::string::npos) << err;
 
   // `coupler run --resume` with a scene whose physics differs from the checkpoint's.

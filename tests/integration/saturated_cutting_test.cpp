@@ -180,7 +180,7 @@ TEST(SaturatedCutting, TheFluidStiffnessLimitFollowsTheDensityTheDemReports) {
 
 TEST(SaturatedCutting, WithoutDampingTheFluidForceDoesNotLag) {
   // The lagged force is a negative damping that only local damping removes: undamped, N = 1.
-  const CouplerRun r = run_small_cut("undamped", {"--set", "dem.local_damping=0",
+  const CouplerRun r = run_small_cut("undamped", {"--set", "dem.damping.model=none",
                                               "--set", "time.end_time_s=0.002"});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(number(coupler::read_summary(r.out / "summary.json"), "coupling_interval"), 1);

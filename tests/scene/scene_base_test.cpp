@@ -45,7 +45,7 @@ constexpr const char* kBase =
     "time { end_time_s: 0.5 dt_safety: 0.1 }\n"
     "dem {\n"
     "  lattice { nx: 2 ny: 3 spacing_m: 0.001 radius_m: 0.0004 }\n"
-    "  local_damping: 0.7\n"
+    "  damping { local_coefficient: 0.7 }\n"
     "}\n"
     "output { frame_fields: [\"position\", \"radius\"] }\n";
 
@@ -75,7 +75,7 @@ TEST(SceneBase, MessagesMergeScalarsAndListsReplace) {
   EXPECT_EQ(scene.time().dt_safety(), 0.1);              // the rest of the block: merged
   EXPECT_EQ(scene.dem().lattice().nx(), 2);
   EXPECT_EQ(scene.dem().lattice().ny(), 5);
-  EXPECT_EQ(scene.dem().local_damping(), 0.7);
+  EXPECT_EQ(scene.dem().damping().local_coefficient(), 0.7);
   ASSERT_EQ(scene.output().frame_fields_size(), 1);      // a list written: replaced, not appended
   EXPECT_EQ(scene.output().frame_fields(0), "damage");
   EXPECT_FALSE(scene.has_base());
@@ -94,13 +94,13 @@ TEST(SceneBase, EffectiveTextIsTheMergedSceneWithoutBase) {
 
 TEST(SceneBase, BasesChainAndPathsAreRelativeToTheFileThatNamesThem) {
   const Files files;
-  files.write("rock/rock.pbtxt", "dem { local_damping: 0.3 density_kg_m3: 2500 }\n");
+  files.write("rock/rock.pbtxt", "dem { damping { local_coefficient: 0.3 } density_kg_m3: 2500 }\n");
   files.write("cutting/scene.pbtxt", "base: \"../rock/rock.pbtxt\"\n" + std::string(kBase));
   const auto scene = load_scene(files.write("extreme/x.pbtxt",
                                             "base: \"../cutting/scene.pbtxt\"\n"
                                             "dem { density_kg_m3: 3000 }\n"))
                          .scene;
-  EXPECT_EQ(scene.dem().local_damping(), 0.7);      // the middle file overrides the rock
+  EXPECT_EQ(scene.dem().damping().local_coefficient(), 0.7);  // the middle file overrides the rock
   EXPECT_EQ(scene.dem().density_kg_m3(), 3000);     // the last file overrides both
   EXPECT_EQ(scene.dem().lattice().ny(), 3);
 }
@@ -144,14 +144,14 @@ TEST(SceneBase, AnErrorInTheBaseIsReportedAtTheBasesLine) {
                                        "time { end_time_s: 0.5 }\n"
                                        "dem {\n"
                                        "  lattice { nx: 2 ny: 3 spacing_m: 0.001 radius_m: 0.0004 }\n"
-                                       "  local_damping: 1.5\n"
+                                       "  damping { local_coefficient: 1.5 }\n"
                                        "  densty_kg_m3: 2800\n"
                                        "}\n");
   const std::string scene = files.write("scene.pbtxt", "base: \"base.pbtxt\"\n\ntime { dt_safety: 2 }\n");
   const auto errors = errors_of(scene);
   ASSERT_EQ(errors.size(), 3u) << testing::PrintToString(errors);
   EXPECT_THAT(errors[0], StartsWith(scene + ":3:8: time.dt_safety = 2 is out of range"));
-  EXPECT_THAT(errors[1], StartsWith(base + ":4:3: dem.local_damping = 1.5 is out of range"));
+  EXPECT_THAT(errors[1], StartsWith(base + ":4:13: dem.damping.local_coefficient = 1.5 is out of range"));
   EXPECT_THAT(errors[2], StartsWith(base + ":5:3: Message type \"rockcut.Dem\" has no field named "
                                            "\"densty_kg_m3\" (did you mean \"density_kg_m3\"?)"));
 
@@ -165,15 +165,15 @@ TEST(SceneBase, AnErrorInTheBaseIsReportedAtTheBasesLine) {
 TEST(SceneBase, AValueTheSceneOverridesIsReportedInTheScene) {
   const Files files;
   files.write("base.pbtxt", kBase);
-  const std::string scene = files.write("scene.pbtxt", "base: \"base.pbtxt\"\ndem {\n  local_damping: -1\n}\n");
+  const std::string scene = files.write("scene.pbtxt", "base: \"base.pbtxt\"\ndem {\n  damping { local_coefficient: -1 }\n}\n");
   const auto errors = errors_of(scene);
   ASSERT_EQ(errors.size(), 1u) << testing::PrintToString(errors);
-  EXPECT_THAT(errors[0], StartsWith(scene + ":3:3: dem.local_damping = -1 is out of range"));
+  EXPECT_THAT(errors[0], StartsWith(scene + ":3:13: dem.damping.local_coefficient = -1 is out of range"));
 }
 
 TEST(SceneBase, MissingRequiredFieldsAreReportedAtTheScene) {
   const Files files;
-  files.write("rock.pbtxt", "dem { local_damping: 0.7 }\n");
+  files.write("rock.pbtxt", "dem { damping { local_coefficient: 0.7 } }\n");
   const std::string scene = files.write("scene.pbtxt", "base: \"rock.pbtxt\"\n");
   const auto errors = errors_of(scene);
   ASSERT_FALSE(errors.empty());
@@ -232,7 +232,7 @@ TEST(SceneBase, TheRockOfTheCuttingAndCalibrationScenesIsWrittenOnce) {
       ++scenes;
       std::ifstream in(entry.path());
       const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-      for (const char* field : {"bonds", "contact", "density_kg_m3", "local_damping"})
+      for (const char* field : {"bonds", "contact", "density_kg_m3"})
         EXPECT_EQ(text.find(std::string("\n  ") + field), std::string::npos)
             << entry.path() << " writes the rock's " << field << ": take it from cases/rock/";
       const rockcut::Dem dem = load_scene(entry.path()).scene.dem();
@@ -245,7 +245,6 @@ TEST(SceneBase, TheRockOfTheCuttingAndCalibrationScenesIsWrittenOnce) {
       EXPECT_EQ(dem.contact().shear_stiffness_pa(), rock.dem().contact().shear_stiffness_pa())
           << entry.path();
       EXPECT_EQ(dem.density_kg_m3(), rock.dem().density_kg_m3()) << entry.path();
-      EXPECT_EQ(dem.local_damping(), rock.dem().local_damping()) << entry.path();
     }
   }
   EXPECT_GE(scenes, 7);

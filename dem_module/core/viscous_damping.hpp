@@ -1,0 +1,48 @@
+// Viscous damping: a linear dashpot beside every spring of a bond, a contact and a disc-wall (or
+// disc-tool) contact, in the normal and the tangential direction (Cundall & Strack 1979; PFC's
+// linear model; LAMMPS's granular hooke and BPM bond damping), per metre of thickness:
+//   F_n,d = -c_n v_n,   F_t,d = -c_t v_t,   c = 2 zeta sqrt(m_eff k),
+// with v_n = (v_j - v_i) . n (positive when the pair separates), v_t the shear spring's relative
+// velocity of the contact points (core/incremental_shear_spring.hpp), m_eff = m_i m_j / (m_i + m_j)
+// (m_i against a wall or the tool) and k the spring's stiffness (k_n or k_s). The dashpots act on
+// relative motion only: a rigid translation or rotation of a chip is not damped.
+// A linear spring-dashpot collision that ends when the overlap returns to zero has the normal
+// coefficient of restitution e = exp(-pi zeta / sqrt(1 - zeta^2)), so zeta = -ln e / sqrt(pi^2 +
+// ln^2 e) (e.g. Schwager & Poeschel 2007; exact for the linear law).
+// always_inline: the step loops call these per pair.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+
+namespace rockcut::dem {
+
+/// zeta [-] of the linear spring-dashpot whose collision has restitution e in (0, 1].
+inline double damping_ratio_from_restitution(double restitution) {
+  const double log_e = std::log(restitution);
+  return -log_e / std::sqrt(std::numbers::pi * std::numbers::pi + log_e * log_e);
+}
+
+/// e [-] of a collision under the linear spring-dashpot of damping ratio zeta in [0, 1).
+inline double restitution_from_damping_ratio(double zeta) {
+  return std::exp(-std::numbers::pi * zeta / std::sqrt(1.0 - zeta * zeta));
+}
+
+/// The factor on a spring's critical step sqrt(m/k) (up to its constant) that a dashpot of
+/// damping ratio zeta brings: the central-difference scheme's limit 2/omega (sqrt(1 + zeta^2) -
+/// zeta) (Belytschko & Hughes 1983) over the undamped 2/omega.
+inline double damped_critical_step_factor(double zeta) { return std::sqrt(1.0 + zeta * zeta) - zeta; }
+
+/// 2 zeta sqrt(k) [sqrt(Pa)], formed once per loop: c = this / sqrt(1/m_i + 1/m_j).
+inline double dashpot_scale(double zeta, double stiffness_pa) { return 2.0 * zeta * std::sqrt(stiffness_pa); }
+
+/// 1 / sqrt(1/m_i + 1/m_j) = sqrt(m_eff) [sqrt(kg/m)] of a pair (inv_mass_j = 0 for a wall).
+[[gnu::always_inline]] inline double sqrt_effective_mass(double inv_mass_i, double inv_mass_j) {
+  return 1.0 / std::sqrt(inv_mass_i + inv_mass_j);
+}
+
+/// A dashpot's force [N/m] (compression or along t, as the spring it sits beside) at relative
+/// velocity v [m/s] with coefficient c [kg/(m s)]; its dissipation over dt is c v^2 dt.
+[[gnu::always_inline]] inline double dashpot_force(double c, double velocity) { return -c * velocity; }
+
+}  // namespace rockcut::dem

@@ -332,13 +332,25 @@ std::size_t DemSystem::add_clamped_group(std::vector<std::uint32_t> particles,
   return clamped_.size() - 1;
 }
 
+std::size_t DemSystem::add_fixed_group(std::vector<std::uint32_t> particles) {
+  const std::size_t k = add_clamped_group(std::move(particles), 0.0);
+  clamped_[k].fixed = true;
+  reset_clamped_velocities();
+  return k;
+}
+
 void DemSystem::hold_clamped_groups() {
   double* f = particles_.force.data();
+  double* q = particles_.torque.data();
   for (ClampedGroup& g : clamped_) {
     double reaction = 0.0;
     for (std::uint32_t i : g.particles) {
       reaction += f[2 * i + 1];
       f[2 * i + 1] = 0.0;
+      if (g.fixed) {
+        f[2 * i] = 0.0;
+        q[i] = 0.0;
+      }
     }
     // The clamp pushes each disc with -f_y while it moves v dt: trapezoid over the step.
     ledger_.boundary_work_j -= 0.5 * (g.reaction_y_n_per_m + reaction) * g.velocity_y_m_s * dt_last_;
@@ -349,10 +361,18 @@ void DemSystem::hold_clamped_groups() {
 void DemSystem::reset_clamped_velocities() {
   double* v = particles_.velocity.data();
   double* f = particles_.force.data();
+  double* w = particles_.angular_velocity.data();
+  double* q = particles_.torque.data();
   for (const ClampedGroup& g : clamped_) {
     for (std::uint32_t i : g.particles) {
       v[2 * i + 1] = g.velocity_y_m_s;
       f[2 * i + 1] = 0.0;  // so the next half kick leaves v_y alone too
+      if (g.fixed) {
+        v[2 * i] = 0.0;
+        w[i] = 0.0;
+        f[2 * i] = 0.0;
+        q[i] = 0.0;
+      }
     }
   }
 }

@@ -47,6 +47,8 @@ struct DemSettings {
 struct ClampedGroup {
   std::vector<std::uint32_t> particles;
   double velocity_y_m_s = 0.0;
+  /// Held in x and in spin too, at rest (velocity_y_m_s 0): the rock mass a cut block belongs to.
+  bool fixed = false;
   double reaction_y_n_per_m = 0.0;  ///< sum of the internal y forces on the group at the last step
 };
 
@@ -80,6 +82,8 @@ class DemSystem {
   /// force on them is cancelled too). Returns the group's index for clamped_group().
   std::size_t add_clamped_group(std::vector<std::uint32_t> particles, double velocity_y_m_s);
   const ClampedGroup& clamped_group(std::size_t k) const { return clamped_[k]; }
+  /// Holds `particles` at rest from now on, translation and spin (a clamped group with `fixed`).
+  std::size_t add_fixed_group(std::vector<std::uint32_t> particles);
 
   const Particles& particles() const { return particles_; }
   const BondSet& bonds() const { return bonds_; }

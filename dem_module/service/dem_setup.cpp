@@ -337,6 +337,26 @@ DemSetup build_dem(const rockcut::Dem& dem) {
                                  damping.damping_ratio, settings.contact.rolling_friction > 0);
   setup.system = std::make_unique<DemSystem>(std::move(particles), settings, std::move(bonds),
                                              std::move(walls));
+  if (dem.fixed_base_height_m() > 0) {
+    if (!dem.has_specimen()) {
+      throw std::invalid_argument("dem.fixed_base_height_m: for a dem.specimen (the block's bottom)");
+    }
+    const Particles& p = setup.system->particles();
+    double bottom = 1e300;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      bottom = std::min(bottom, p.position[2 * i + 1] - p.radius[i]);
+    }
+    std::vector<std::uint32_t> base;
+    for (std::uint32_t i = 0; i < p.size(); ++i) {
+      if (p.position[2 * i + 1] - bottom <= dem.fixed_base_height_m()) base.push_back(i);
+    }
+    if (base.empty()) {
+      throw std::invalid_argument("dem.fixed_base_height_m = " +
+                                  std::to_string(dem.fixed_base_height_m()) +
+                                  " m holds no disc centre; make it at least a disc radius");
+    }
+    setup.system->add_fixed_group(std::move(base));
+  }
   if (setup.rig.clamped_ends) {
     const double v = dem.loading_test().platen_speed_m_s();
     setup.rig.top_layer_group = setup.system->add_clamped_group(std::move(top_layer), -v);

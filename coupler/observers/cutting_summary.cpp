@@ -26,6 +26,8 @@ void CuttingSummary::observe(const std::vector<std::pair<std::string, double>>& 
   if (!travel || !fx || !fy || *travel < steady_after_m_) return;
   sum_x_ += -*fx;
   sum_y_ += *fy;
+  peak_x_ = std::max(peak_x_, -*fx);
+  in_contact_ += (*fx != 0.0 || *fy != 0.0);
   ++samples_;
   for (NodeMean& node : nodes_) {
     const double* p = find_value(scalars, node.pa_key);
@@ -44,6 +46,9 @@ void CuttingSummary::write(Summary& summary) const {
   summary.set("force_vertical_mean_n_per_m", fv);
   summary.set("force_horizontal_mean_n", fh * width_m_);
   summary.set("force_vertical_mean_n", fv * width_m_);
+  summary.set("force_horizontal_peak_n_per_m", peak_x_);
+  summary.set("tool_contact_fraction",
+              samples_ ? static_cast<double>(in_contact_) / static_cast<double>(samples_) : 0.0);
   summary.set("steady_samples", static_cast<std::int64_t>(samples_));
   summary.set("steady_after_m", steady_after_m_);
   for (const char* key : {"breaks_tensile", "breaks_shear", "chips"}) {
@@ -58,7 +63,8 @@ void CuttingSummary::write(Summary& summary) const {
 }
 
 void CuttingSummary::save_state(state::StateArchive& a) const {
-  a.put("cutting_sums", std::vector<double>{sum_x_, sum_y_, static_cast<double>(samples_)});
+  a.put("cutting_sums", std::vector<double>{sum_x_, sum_y_, static_cast<double>(samples_), peak_x_,
+                                            static_cast<double>(in_contact_)});
   std::vector<double> nodes;
   for (const NodeMean& n : nodes_) nodes.insert(nodes.end(), {n.sum_pa, static_cast<double>(n.samples)});
   a.put("cutting_node_sums", std::move(nodes), 2);
@@ -66,10 +72,12 @@ void CuttingSummary::save_state(state::StateArchive& a) const {
 }
 
 void CuttingSummary::load_state(const state::StateArchive& a) {
-  const auto sums = a.values("cutting_sums", 3);
+  const auto sums = a.values("cutting_sums", 5);
   sum_x_ = sums[0];
   sum_y_ = sums[1];
   samples_ = static_cast<std::uint64_t>(sums[2]);
+  peak_x_ = sums[3];
+  in_contact_ = static_cast<std::uint64_t>(sums[4]);
   const auto nodes = a.values("cutting_node_sums", 2 * nodes_.size());
   for (std::size_t k = 0; k < nodes_.size(); ++k) {
     nodes_[k].sum_pa = nodes[2 * k];

@@ -7,6 +7,10 @@
 // Signs: `force_horizontal_mean_n_per_m` is the force resisting the cut (-F_x of the rock on the
 // tool), `force_vertical_mean_n_per_m` the vertical force of the rock on the tool, positive
 // upwards (the paper's figure 8 convention: the tool must be pushed down into the rock).
+// Under a damping that lets chips fly (dem.damping "viscous") the tool touches rock only part of
+// the time: force_horizontal_peak_n_per_m is the largest resisting force of the steady part (what
+// sizes a tooth) and tool_contact_fraction the share of its samples in which the tool touched any
+// disc (force not exactly 0).
 // Pressure nodes (coupled scenes): pressure_<node>_mean_pa is the mean over the steady samples of
 // the node's average p - p_hydro (fluid_probe_<node>_pa), over the samples in which the node
 // held at least one particle centre; pressure_<node>_samples counts them.
@@ -46,7 +50,8 @@ class CuttingSummary : public RunObserver {
   double steady_after_m_ = 0.0;
   double width_m_ = 0.0;
   double sum_x_ = 0.0, sum_y_ = 0.0;
-  std::uint64_t samples_ = 0;
+  double peak_x_ = 0.0;
+  std::uint64_t samples_ = 0, in_contact_ = 0;
   struct NodeMean {
     std::string name;
     std::string pa_key, particles_key;  // its time-series columns

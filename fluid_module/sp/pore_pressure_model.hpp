@@ -31,11 +31,12 @@ namespace rockcut::fluid::sp {
 /// c = 2 zeta sqrt(m_eff k_n). Hence the limit, the two terms adding when both act,
 ///   dt_f <= kFluidStiffnessC * alpha_d * sqrt(m_min / (alpha M))
 ///         + kFluidViscousC * zeta * sqrt(m_min k_n) / (alpha M),
-/// each constant a factor 2 below the smallest unstable step measured (local: 2000 m, alpha_d
-/// 0.7; viscous: docs/model.md, "Damping"). It binds only N > 1: N = 1 is always allowed, also
-/// without damping.
+/// each constant a factor 2 below the smallest unstable step measured at 2000 m, where nothing
+/// cavitates (local: alpha_d 0.7; viscous: zeta 0.1 on the reduced cut with a fixed base, N = 4
+/// stable, N = 6 and 7 stopped by the energy guard: C_v = 0.5 x 9.54e-7 s / (0.1 x 6.39e-6 s);
+/// docs/model.md, "Damping"). It binds only N > 1: N = 1 is always allowed, also without damping.
 inline constexpr double kFluidStiffnessC = 1.5;
-inline constexpr double kFluidViscousC = 1.4;
+inline constexpr double kFluidViscousC = 0.75;
 
 /// A local geometry refresh (docs/model.md, "Reusing the geometry") moves the particles that
 /// have moved more than this fraction of fluid.geometry_refresh_distance, not only the one that

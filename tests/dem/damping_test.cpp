@@ -167,3 +167,40 @@ TEST(RollingResistance, ASpinningDiscOnAFloorStopsAtTheRateTheLimitSets) {
 
 }  // namespace
 }  // namespace rockcut::dem
+
+namespace rockcut::dem {
+namespace {
+
+// A fixed group (dem.fixed_base_height_m: the rock mass under a cut block) stays at rest while a
+// disc bonded to it oscillates against it, and the ledger still closes: the held discs do no work.
+TEST(FixedGroup, HeldDiscsStayAtRestAndTheLedgerCloses) {
+  for (double zeta : {0.0, 0.1}) {
+    Particles p;
+    p.add(0.0, 0.0, kR, kRho);
+    p.add(2 * kR, 0.0, kR, kRho);
+    p.velocity = {0.0, 0.0, 1e-3, 5e-4};
+    p.angular_velocity = {0.0, 3.0};
+    BondSet bonds = test::bond_all_touching(p, {kKn, kKs, 1e9, 1e9});
+    DemSettings s;
+    s.contact = {kKn, kKs, 1.0, zeta, 0.0};
+    s.bond_damping_ratio = zeta;
+    DemSystem sys(std::move(p), s, std::move(bonds));
+    const double e0 = sys.kinetic_energy();
+    sys.add_fixed_group({0});
+    const double dt = 0.05 * std::sqrt(pair_mass() / kKn);
+    for (int k = 0; k < 20000; ++k) sys.step(dt);
+    const Particles& q = sys.particles();
+    EXPECT_EQ(q.position[0], 0.0);
+    EXPECT_EQ(q.position[1], 0.0);
+    EXPECT_EQ(q.velocity[0], 0.0);
+    EXPECT_EQ(q.angular_velocity[0], 0.0);
+    const double held = sys.kinetic_energy() + sys.strain_energy() + sys.ledger().viscous_damping_j;
+    EXPECT_NEAR(held / e0, 1.0, 5e-3) << "zeta " << zeta;
+    if (zeta > 0) {
+      EXPECT_GT(sys.ledger().viscous_damping_j, 0.5 * e0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rockcut::dem

@@ -52,6 +52,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Grain density."},
     {"rockcut.Dem.executable",
      "Path of a DEM executable that speaks the protocol of proto/rockcut/wire.proto, relative to the scene file unless absolute. Empty: the `dem_module` beside the coupler."},
+    {"rockcut.Dem.fixed_base_height_m",
+     "The rock mass under a cut block: the discs of the specimen whose centres lie within this height of its bottom are held at rest (translation and spin), and the bonds to them hold the block down as the rock around a real cut would. Without it the block only rests on the floor, and a tool's upward push lifts it unless local damping (which damps rigid-body motion) holds it. 0: none. Needs dem.specimen."},
     {"rockcut.Dem.gravity_m_s2",
      "Body acceleration applied to every particle."},
     {"rockcut.Dem.guards",

@@ -26,7 +26,9 @@ const rockcut::dem::Packing& packing() {
   return p;
 }
 
-std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads) {
+// The damping of the run: 0 the paper's local damping (alpha_d 0.7), 1 dashpots (zeta 0.1), 2
+// dashpots and rolling springs (mu_r 0.1): what each pair-loop variant costs.
+std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads, int damping = 0) {
   using namespace rockcut::dem;
   const Packing& pk = packing();
   Particles p;
@@ -40,8 +42,9 @@ std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads) {
   // The README's bonding rule: every pair with a surface gap up to 10 um.
   BondSet bonds = BondSet::install(p, {1e10, 2.5e10, 1e4, 2e4}, 10e-6, grid);
   DemSettings s;
-  s.contact = {1e10, 2.5e10, 1.0};
-  s.local_damping = 0.7;
+  s.contact = {1e10, 2.5e10, 1.0, damping > 0 ? 0.1 : 0.0, damping > 1 ? 0.1 : 0.0};
+  s.local_damping = damping == 0 ? 0.7 : 0.0;
+  s.bond_damping_ratio = s.contact.damping_ratio;
   s.threads = threads;
   WallSet walls;
   // The chisel touching the block's left edge, 20 mm deep, moving at 1 m/s (60 deg cutting angle).
@@ -72,6 +75,23 @@ void BM_BondedBlockCutting(benchmark::State& state) {
 }
 BENCHMARK(BM_BondedBlockCutting)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
     ->MinTime(3.0);
+
+// One thread, per damping model (argument as bonded_block_with_tool's `damping`).
+void BM_BondedBlockCuttingDamping(benchmark::State& state) {
+  auto system = bonded_block_with_tool(1, static_cast<int>(state.range(0)));
+  const double dt = 2e-8;
+  for (int k = 0; k < 200; ++k) system->step(dt);
+  const std::size_t n = system->particles().size();
+  std::uint64_t steps = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < 100; ++k) system->step(dt);
+    steps += 100;
+  }
+  state.counters["particle_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(steps) * n, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_BondedBlockCuttingDamping)->Arg(0)->Arg(1)->Arg(2)->UseRealTime()
+    ->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 }  // namespace
 

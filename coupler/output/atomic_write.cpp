@@ -39,7 +39,14 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
   TempFile tmp;
   tmp.path = target;
   tmp.path += ".tmp." + std::to_string(::getpid());
-  tmp.fd = ::open(tmp.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // A fresh file, never a link: whatever lies at the temporary's name (a planted symbolic link
+  // to a file outside the output directory, a stale file) is unlinked, which removes a link and
+  // not what it points to, and the file is then created exclusively without following links. A
+  // name planted again between the two calls makes the open fail instead of writing through it.
+  if (::unlink(tmp.path.c_str()) != 0 && errno != ENOENT) {
+    fail_errno(tmp.path, "cannot remove what lies at the temporary file's name", errno);
+  }
+  tmp.fd = ::open(tmp.path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (tmp.fd < 0) fail_errno(tmp.path, "cannot create temporary file", errno);
 
   const char* data = content.data();

@@ -1,11 +1,13 @@
 #include "output/checkpoint_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include "output/h5_handle.hpp"
 #include "output/text_lines.hpp"
@@ -179,14 +181,26 @@ std::uint64_t checkpoint_checksum(const Checkpoint& c) {
 
 fs::path write_checkpoint(const fs::path& dir, const Checkpoint& c) {
   fs::create_directories(dir);
+  // The folder must be this user's own directory, not a link planted in its place (the fresh run
+  // removes checkpoints/, and another user could re-create it as a link to somewhere else).
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::geteuid()) {
+    throw std::runtime_error(dir.string() +
+                             ": not a directory of this user's (a symbolic link or another "
+                             "user's folder): checkpoints are not written through it");
+  }
   const fs::path final_path = dir / checkpoint_file_name(c.step);
   const fs::path temp_path = dir / (std::string(".") + checkpoint_file_name(c.step) + ".tmp");
   const std::string ctx = temp_path.string();
   h5::silence_auto_errors();
   try {
+    // A fresh file, never through a link: what lies at the temporary's name is unlinked (a link,
+    // not its target) and the file is created exclusively.
+    std::error_code unlinked;
+    fs::remove(temp_path, unlinked);
     h5::Handle fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS), ctx, "cannot create access list");
     h5::check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), ctx, "cannot set close degree");
-    h5::Handle file = h5::file(H5Fcreate(ctx.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), ctx,
+    h5::Handle file = h5::file(H5Fcreate(ctx.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get()), ctx,
                                "cannot create file");
     const hid_t root = file.get();
     h5::write_string_attribute(root, "format", kFormat, ctx);

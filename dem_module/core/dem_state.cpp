@@ -149,6 +149,15 @@ void DemSystem::save_state(StateArchive& a) const {
 
 void DemSystem::load_state(const StateArchive& a) {
   if (in_split_step_) throw std::logic_error("dem: state loaded inside a split step");
+  // Validate everything, then assign: the members are loaded into a copy, which replaces this
+  // system only when every size and index has been checked. A refused state leaves the system as
+  // it was, so the next step cannot read a half-loaded list out of bounds.
+  DemSystem loaded = *this;
+  loaded.assign_state(a);
+  *this = std::move(loaded);
+}
+
+void DemSystem::assign_state(const StateArchive& a) {
   Particles& p = particles_;
   const std::size_t n = p.size();
   a.get("position_m", p.position, 2 * n);

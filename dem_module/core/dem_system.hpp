@@ -99,7 +99,8 @@ class DemSystem {
   /// Checkpoint (core/dem_state.cpp): everything that decides the next bit, between two steps.
   void save_state(state::StateArchive& a) const;
   /// Restores a saved state into a system built from the same scene; throws state::StateError
-  /// if it does not fit (another particle count, wall or clamp layout).
+  /// if it does not fit (another particle count, wall or clamp layout), and then leaves the
+  /// system exactly as it was.
   void load_state(const state::StateArchive& a);
 
   /// Kinetic energy, translation and rotation [J/m].
@@ -108,6 +109,9 @@ class DemSystem {
   double strain_energy() const;
 
  private:
+  /// load_state's work on this object; may throw with the object half-assigned (load_state runs it
+  /// on a copy).
+  void assign_state(const state::StateArchive& a);
   /// A whole step in one parallel region (step() when no motion is prescribed).
   void full_step(double dt);
   /// Eq. 6 (if `kick`) and eq. 5 in one pass; adds the F^n halves of the work trapezoids.

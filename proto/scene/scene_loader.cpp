@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -47,18 +48,45 @@ namespace {
 
 namespace pb = google::protobuf;
 
+// The largest scene or base file read: the shipped scenes are under 5 kB.
+constexpr std::uintmax_t kMaxSceneFileBytes = 4u << 20;  // 4 MiB
+
 std::string read_file(const fs::path& path, std::string& error) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) {
     error = "it is a directory";
     return {};
   }
+  // A scene is a text file of kilobytes: a device (/dev/zero), a FIFO or a socket would be read
+  // without end, and a huge file whole, so each is refused before a byte is read. The size is
+  // checked again while reading, for a file that grows.
+  const fs::file_status status = fs::status(path, ec);
+  if (!ec && status.type() != fs::file_type::regular) {
+    error = "it is not a regular file (a device, a pipe or a socket): a scene is a text file";
+    return {};
+  }
+  if (!ec) {
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > kMaxSceneFileBytes) {
+      error = "it is " + std::to_string(size) + " bytes, more than a scene's limit of " +
+              std::to_string(kMaxSceneFileBytes);
+      return {};
+    }
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     error = std::strerror(errno);
     return {};
   }
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::string text;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxSceneFileBytes) {
+      error = "it grew past a scene's limit of " + std::to_string(kMaxSceneFileBytes) + " bytes";
+      return {};
+    }
+  }
   if (in.bad()) error = std::strerror(errno);
   return text;
 }

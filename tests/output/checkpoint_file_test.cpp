@@ -131,3 +131,33 @@ TEST(CheckpointFile, PruneKeepsTheNewestAndListsNewestFirst) {
 
 }  // namespace
 }  // namespace rockcut::coupler
+
+namespace rockcut::coupler {
+namespace {
+
+// Temporary files follow no link: a link planted at the checkpoint's temporary name, or at
+// summary.json's or run.xdmf's, is replaced by a fresh file and its target is left alone; a
+// checkpoints/ folder that is itself a link is refused.
+TEST(CheckpointFile, TemporaryFilesFollowNoPlantedLink) {
+  const fs::path dir = fresh("planted_links");
+  const fs::path victim = dir / "victim.txt";
+  std::ofstream(victim) << "not yours";
+  const fs::path checkpoints = dir / "checkpoints";
+  fs::create_directories(checkpoints);
+  fs::create_symlink(victim, checkpoints / ".checkpoint_000000000007.h5.tmp");
+  const fs::path written = write_checkpoint(checkpoints, sample(7));
+  EXPECT_EQ(read_checkpoint(written).step, 7u);
+  std::ifstream in(victim);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "not yours");
+  EXPECT_FALSE(fs::exists(checkpoints / ".checkpoint_000000000007.h5.tmp"));
+
+  // The folder itself a link to another directory: refused, nothing written there.
+  const fs::path elsewhere = dir / "elsewhere";
+  fs::create_directories(elsewhere);
+  fs::create_symlink(elsewhere, dir / "linked_checkpoints");
+  EXPECT_THROW(write_checkpoint(dir / "linked_checkpoints", sample(8)), std::runtime_error);
+  EXPECT_TRUE(fs::is_empty(elsewhere));
+}
+
+}  // namespace
+}  // namespace rockcut::coupler

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -175,6 +177,22 @@ TEST(SummaryJson, WriteReplacesAtomicallyAndLeavesNoTemporary) {
   // A failed write (directory missing) throws and leaves the old file untouched.
   EXPECT_THROW(new_summary.write(dir / "no_such_dir" / "summary.json"), std::runtime_error);
   EXPECT_EQ(read_text(target), new_summary.to_json());
+}
+
+TEST(SummaryJson, APlantedLinkAtTheTemporaryNameIsNotFollowed) {
+  // summary.json.tmp.<pid> (and run.xdmf's, the same writer) is created fresh and exclusively: a
+  // link planted there by another user is removed, its target left as it was.
+  const auto dir = scratch("planted");
+  const auto victim = dir / "victim.txt";
+  write_text(victim, "not yours");
+  const auto target = dir / "summary.json";
+  std::filesystem::create_symlink(victim, dir / ("summary.json.tmp." + std::to_string(::getpid())));
+  Summary s;
+  s.set("version", std::int64_t{3});
+  s.write(target);
+  EXPECT_EQ(read_text(target), s.to_json());
+  EXPECT_EQ(read_text(victim), "not yours");
+  EXPECT_FALSE(std::filesystem::is_symlink(target));
 }
 
 }  // namespace

@@ -136,6 +136,29 @@ TEST(SceneBase, AMissingBaseIsNamedWhereItIsWritten) {
   EXPECT_THAT(errors[0], HasSubstr("nowhere.pbtxt: No such file"));
 }
 
+TEST(SceneBase, SpecialAndHugeFilesAreRefusedUnread) {
+  // A device read whole never ends (/dev/zero filled memory until std::bad_alloc), a FIFO blocks:
+  // neither a scene nor a base may be anything but a regular file of at most 4 MiB.
+  const Files files;
+  for (const char* special : {"/dev/zero", "/dev/null"}) {
+    const std::string scene =
+        files.write("special.pbtxt", std::string("base: \"") + special + "\"\n");
+    const auto errors = errors_of(scene);
+    ASSERT_EQ(errors.size(), 1u) << special;
+    EXPECT_THAT(errors[0], HasSubstr("not a regular file")) << special;
+    try {
+      load_scene(special);
+      ADD_FAILURE() << special << " loaded as a scene";
+    } catch (const SceneError& e) {
+      EXPECT_THAT(e.diagnostics()[0].to_string(), HasSubstr("not a regular file")) << special;
+    }
+  }
+  const std::string big = files.write("big.pbtxt", std::string((4u << 20) + 1, '#'));
+  const auto errors = errors_of(files.write("scene.pbtxt", "base: \"big.pbtxt\"\n"));
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_THAT(errors[0], HasSubstr("more than a scene's limit of 4194304"));
+}
+
 TEST(SceneBase, AnErrorInTheBaseIsReportedAtTheBasesLine) {
   const Files files;
   // Out of range (validation) and misspelt (parser) values in the base, one out of range in the

@@ -156,6 +156,24 @@ std::vector<std::string> children(hid_t loc, const std::string& path, const std:
 }
 }  // namespace
 
+std::optional<std::string> stored_scene_text(const std::filesystem::path& out_dir) {
+  const std::string path = (out_dir / kH5Name).string();
+  h5::silence_auto_errors();
+  if (H5Fis_hdf5(path.c_str()) <= 0) {
+    H5Eclear2(H5E_DEFAULT);
+    return std::nullopt;
+  }
+  try {
+    h5::Handle fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS), path, "cannot create access list");
+    h5::check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), path,
+              "cannot set the close degree");
+    h5::Handle file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "cannot open");
+    return h5::read_string_attribute(file.get(), "scene", path + ": /");
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
+  }
+}
+
 std::unique_ptr<RunFile> RunFile::resume(const std::filesystem::path& out_dir,
                                          const RunFileExtent& extent,
                                          const std::vector<std::string>& field_order,

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <memory>
 #include <span>
 #include <string>
@@ -29,6 +30,10 @@ struct RunFileExtent {
   std::map<std::string, std::vector<std::string>> table_columns;
   std::uint64_t frames = 0;
 };
+
+/// The effective scene stored in OUT/run.h5 by the run that made it; none where the file is
+/// missing or unreadable.
+std::optional<std::string> stored_scene_text(const std::filesystem::path& out_dir);
 
 class RunFile {
  public:

@@ -10,6 +10,7 @@
 #include <google/protobuf/text_format.h>
 #include <google/protobuf/util/message_differencer.h>
 
+#include "output/run_file.hpp"
 #include "output/text_lines.hpp"
 #include "run/run_checkpoint.hpp"
 #include "run/signals.hpp"
@@ -163,6 +164,25 @@ std::string refuse_reason(const Checkpoint& c, const scene::LoadedScene& now) {
   return "";
 }
 
+// Why checkpoint `c`, whose scene is `candidate`, is not the run in OUT (`coupler resume`): its
+// scene differs from the one OUT/run.h5 was written with beyond what a resume may change (a
+// checkpoint of another run copied into checkpoints/). Empty: it is this run's.
+std::string foreign_reason(const std::string& run_scene_text, const scene::LoadedScene& candidate,
+                           const fs::path& out_dir) {
+  scene::LoadedScene run;
+  try {
+    run = scene::parse_scene(run_scene_text, (out_dir / "run.h5").string() + " (its scene)");
+  } catch (const scene::SceneError& e) {
+    return std::string("the run's own scene in run.h5 no longer validates: ") + e.what();
+  }
+  const std::vector<std::string> differ = scene_differences(run.scene, candidate.scene, nullptr);
+  if (differ.empty()) return "";
+  std::string reason = "it belongs to another run: its scene differs from " +
+                       (out_dir / "run.h5").string() + "'s in:";
+  for (const std::string& d : differ) reason += "\n  " + d;
+  return reason;
+}
+
 }  // namespace
 
 int choose_checkpoint(const RunOptions& options, scene::LoadedScene& loaded,
@@ -174,6 +194,10 @@ int choose_checkpoint(const RunOptions& options, scene::LoadedScene& loaded,
               << " holds none)\n";
     return kExitBadInput;
   }
+  // `coupler resume` takes the scene from the checkpoint: the run's own scene, in run.h5, is what
+  // a checkpoint must match to belong to it.
+  const std::optional<std::string> run_scene =
+      options.resume ? stored_scene_text(options.out_dir) : std::nullopt;
   bool damaged_only = true;  // a refused scene or version holds for the older ones too
   for (std::size_t k = 0; k < files.size() && !checkpoint && damaged_only; ++k) {
     std::string reason;
@@ -184,6 +208,8 @@ int choose_checkpoint(const RunOptions& options, scene::LoadedScene& loaded,
       scene::LoadedScene candidate = resumed_scene(options, c, files[k]);
       reason = refuse_reason(c, candidate);
       damaged_only = reason.empty();
+      // A foreign checkpoint says nothing of the older ones, which may be the run's own.
+      if (reason.empty() && run_scene) reason = foreign_reason(*run_scene, candidate, options.out_dir);
       if (reason.empty()) {
         checkpoint = std::move(c);
         loaded = std::move(candidate);

@@ -221,6 +221,43 @@ TEST_P(Extend, AFinishedRunContinuedToALaterEndTimeMatchesALongerRun) {
 INSTANTIATE_TEST_SUITE_P(Cuts, Extend, ::testing::Values("dry_reduced", "saturated_reduced"));
 
 // What a resume refuses, and that a refusal changes nothing.
+TEST(Restart, ResumeRefusesACheckpointOfAnotherRun) {
+  // `coupler resume OUT` takes its scene from the checkpoint, so a checkpoint copied in from
+  // another run (here one with another friction, run further, so it is the newest) matched only
+  // itself and was continued. The run's own scene is the one OUT/run.h5 was written with: the
+  // foreign checkpoint is refused naming the field, the run falls back to its own; with none of
+  // its own, nothing is resumed and nothing in OUT changes.
+  const std::string scene = source("cases/cutting/dry_reduced.pbtxt");
+  const fs::path dir = fresh_dir("restart_foreign");
+  std::vector<std::string> args = short_cut("1", "ipc");
+  args.insert(args.end(), {"--set", "time.end_time_s=0.001"});
+  const CouplerRun own = run_coupler(scene, args, dir / "own", 120000ms);
+  ASSERT_EQ(own.code, 0) << own.err;
+  std::vector<std::string> other_args = short_cut("1", "ipc");
+  other_args.insert(other_args.end(),
+                    {"--set", "time.end_time_s=0.002", "--set", "dem.contact.friction=0.5"});
+  const CouplerRun other = run_coupler(scene, other_args, dir / "other", 120000ms);
+  ASSERT_EQ(other.code, 0) << other.err;
+  const fs::path foreign = checkpoints(other.out).back();
+  fs::copy_file(foreign, own.out / "checkpoints" / foreign.filename());
+  ASSERT_EQ(checkpoints(own.out).back().filename(), foreign.filename());
+
+  std::string err;
+  EXPECT_EQ(resume(own.out, {}, dir, "foreign_fallback", &err), 0) << err;
+  EXPECT_NE(err.find("belongs to another run"), std::string::npos) << err;
+  EXPECT_NE(err.find("friction"), std::string::npos) << err;
+  EXPECT_NE(err.find("resume     from"), std::string::npos) << err;
+
+  for (const fs::path& f : checkpoints(own.out)) {
+    if (f.filename() != foreign.filename()) fs::remove(f);
+  }
+  const std::string h5_before = read_file(own.out / "run.h5");
+  EXPECT_EQ(resume(own.out, {}, dir, "foreign_only", &err), kExitBadInput) << err;
+  EXPECT_NE(err.find("friction"), std::string::npos) << err;
+  EXPECT_NE(err.find("no usable checkpoint; nothing in it was changed"), std::string::npos) << err;
+  EXPECT_EQ(read_file(own.out / "run.h5"), h5_before) << "a refused resume touched run.h5";
+}
+
 TEST(Restart, RefusesChangedScenesAndBadCheckpointsAndFallsBackToTheLastGoodOne) {
   const std::string scene = source("cases/cutting/dry_reduced.pbtxt");
   const fs::path dir = fresh_dir("restart_refusals");

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -38,12 +39,22 @@ void remove_orphaned_ipc_directories(const fs::path& base) {
 
 fs::path make_private_ipc_directory() {
   constexpr std::size_t kMaxSocketPath = 100;
-  fs::path base = fs::temp_directory_path();
+  // TMPDIR that names nothing or a file makes temp_directory_path() throw a bare
+  // filesystem_error: say what is wrong and what to do instead.
+  std::error_code tmp_error;
+  fs::path base = fs::temp_directory_path(tmp_error);
+  if (tmp_error) {
+    const char* tmpdir = std::getenv("TMPDIR");
+    throw EnvironmentError(std::string("TMPDIR=") + (tmpdir ? tmpdir : "") +
+                             " is not a directory (" + tmp_error.message() +
+                             "): the module sockets need a private directory there; set TMPDIR "
+                             "to a writable directory or unset it");
+  }
   if ((base / "rockcut-XXXXXX" / "fluid.sock").string().size() > kMaxSocketPath) base = "/tmp";
   remove_orphaned_ipc_directories(base);
   std::string templ = (base / "rockcut-XXXXXX").string();
   if (!mkdtemp(templ.data())) {
-    throw std::runtime_error("cannot create a private directory for the module sockets in " +
+    throw EnvironmentError("cannot create a private directory for the module sockets in " +
                              base.string() + ": " + std::strerror(errno) +
                              " (set TMPDIR to a writable directory)");
   }

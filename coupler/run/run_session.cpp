@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "observers/run_observers.hpp"
+#include "run/ipc_directory.hpp"
 #include "run/run_checkpoint.hpp"
 #include "run/run_report.hpp"
 #include "run/signals.hpp"
@@ -72,6 +73,9 @@ int RunSession::run() {
   } catch (const wire::Interrupted&) {
     std::cerr << "interrupted during start-up\n";
     return 128 + stop_signal();
+  } catch (const EnvironmentError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitBadInput;
   } catch (const std::runtime_error& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitModuleFailed;

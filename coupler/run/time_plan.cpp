@@ -134,6 +134,14 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
                   steps);
     throw PlanError(text);
   }
+  if (!(steps >= 1.0)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "time.end_time_s = %.3g s is less than one step (dt = %.3g s): the run would "
+                  "make no step; lengthen it or lower time.dt_s",
+                  time.end_time_s(), plan.dt_s);
+    throw PlanError(text);
+  }
   plan.total_steps = static_cast<std::uint64_t>(steps);
   plan.report.push_back("steps: " + std::to_string(plan.total_steps) + " to t = " +
                         fmt(time.end_time_s()) + " s");

@@ -33,7 +33,7 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
     {"rockcut.Coupling.interval_fraction",
      "When `interval` is left out: N is this fraction of the largest interval the fluid limits allow (at least 1). The work-precision study (docs/accuracy.md, set H, seeds 1-16) found the mean tool force of the reduced saturated cut at 0 m 9 % above its unlagged (N = 1) value at a quarter of the largest stable N (N = 3, not resolved from zero), at 0.43 times the wall time of N = 1, and 42 % above it at N = 10 (33 % at N = 7, seeds 1-8); at 2000 m no N moved it beyond the seeds' scatter, and the shear fraction of the breaks is the same at every N. 1: the fastest stable run. For the shallow force to better than about a tenth, set `interval: 1`."},
     {"rockcut.Coupling.timeout_s",
-     "A module that does not answer for this long is declared stalled and the run stops. A DEM request for many steps gets this plus the time its work takes at 1e6 particle-steps/s."},
+     "A module that does not answer for this long is declared stalled and the run stops. A DEM request for many steps gets this plus the time its work takes at 1e6 particle-steps/s. At least 0.1 s: a module must have time to answer one message."},
     {"rockcut.Damping.damping_ratio",
      "zeta: the dashpots' fraction of critical damping, c = 2 zeta sqrt(m_eff k) with m_eff = m_i m_j / (m_i + m_j) (m_i against a wall) and k the spring's stiffness (k_n or k_s, of the bond or the contact). Used by `viscous` and `local+viscous`."},
     {"rockcut.Damping.local_coefficient",

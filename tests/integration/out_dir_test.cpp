@@ -95,6 +95,24 @@ TEST(OutDir, ALongTmpdirStillRunsAndLeavesNothingBehind) {
   EXPECT_TRUE(fs::is_empty(tmp));
 }
 
+TEST(OutDir, ATmpdirThatIsNoDirectoryIsBadSettingsNamedOnOneLine) {
+  // Missing, or a regular file: exit 2 naming TMPDIR and what to do, no module started, not a
+  // module failure (exit 3) with a raw "filesystem error: temp_directory_path".
+  const fs::path dir = fresh_dir("out_dir_bad_tmpdir");
+  const fs::path file = dir / "a_file";
+  std::ofstream(file) << "x";
+  for (const fs::path& tmp : {dir / "missing", file}) {
+    ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
+    const CouplerRun r = run_coupler(source("cases/cutting/saturated_reduced.pbtxt"), kShort, dir,
+                                     120000ms);
+    unsetenv("TMPDIR");
+    EXPECT_EQ(r.code, 2) << tmp << "\n" << r.err;
+    EXPECT_NE(r.err.find("TMPDIR=" + tmp.string() + " is not a directory"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
+  }
+}
+
 // Past a file-size limit (as on a full disk) the run stops with one line naming the file and the
 // cause, exit code 5 and a summary.json that says failed; never a signal.
 TEST(OutDir, AFileSizeLimitStopsTheRunWithExitCode5AndASummary) {

@@ -134,6 +134,7 @@ TEST(SceneRules, NamesAndListsAndTimeoutsAreCheckedBeforeTheRun) {
   EXPECT_NE(refused("dem { " + wall + " " + wall + " }").find("dem.walls[1].name = \"floor\" is given twice"),
             std::string::npos);
   EXPECT_NE(refused("", {"coupling.timeout_s=0"}).find("out of range"), std::string::npos);
+  EXPECT_NE(refused("", {"coupling.timeout_s=1e-300"}).find("out of range"), std::string::npos);
   EXPECT_NE(refused("", {"coupling.timeout_s=1e300"}).find("out of range"), std::string::npos);
   EXPECT_EQ(refused(""), "");
 }

@@ -55,40 +55,34 @@ std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads, int
   return std::make_unique<DemSystem>(std::move(p), s, std::move(bonds), std::move(walls));
 }
 
-void BM_BondedBlockCutting(benchmark::State& state) {
-  const int threads = static_cast<int>(state.range(0));
-  auto system = bonded_block_with_tool(threads);
+// Steps `system` through the benchmark's iterations (after a warm-up: first rebuilds, caches) and
+// sets its counters.
+void time_steps(benchmark::State& state, rockcut::dem::DemSystem& system) {
   const double dt = 2e-8;
-  for (int k = 0; k < 200; ++k) system->step(dt);  // warm up: first rebuilds, caches
-  const std::size_t n = system->particles().size();
+  for (int k = 0; k < 200; ++k) system.step(dt);
+  const std::size_t n = system.particles().size();
   std::uint64_t steps = 0;
   for (auto _ : state) {
-    for (int k = 0; k < 100; ++k) system->step(dt);
+    for (int k = 0; k < 100; ++k) system.step(dt);
     steps += 100;
   }
   state.counters["particle_steps_per_s"] =
       benchmark::Counter(static_cast<double>(steps) * n, benchmark::Counter::kIsRate);
   state.counters["particles"] = static_cast<double>(n);
-  state.counters["bonds"] = static_cast<double>(system->bonds().size());
-  state.counters["breaks"] = static_cast<double>(system->breaks().size());
-  state.counters["rebuilds"] = static_cast<double>(system->neighbour_rebuilds());
+  state.counters["bonds"] = static_cast<double>(system.bonds().size());
+  state.counters["breaks"] = static_cast<double>(system.breaks().size());
+  state.counters["rebuilds"] = static_cast<double>(system.neighbour_rebuilds());
+}
+
+void BM_BondedBlockCutting(benchmark::State& state) {
+  time_steps(state, *bonded_block_with_tool(static_cast<int>(state.range(0))));
 }
 BENCHMARK(BM_BondedBlockCutting)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
     ->MinTime(3.0);
 
 // One thread, per damping model (argument as bonded_block_with_tool's `damping`).
 void BM_BondedBlockCuttingDamping(benchmark::State& state) {
-  auto system = bonded_block_with_tool(1, static_cast<int>(state.range(0)));
-  const double dt = 2e-8;
-  for (int k = 0; k < 200; ++k) system->step(dt);
-  const std::size_t n = system->particles().size();
-  std::uint64_t steps = 0;
-  for (auto _ : state) {
-    for (int k = 0; k < 100; ++k) system->step(dt);
-    steps += 100;
-  }
-  state.counters["particle_steps_per_s"] =
-      benchmark::Counter(static_cast<double>(steps) * n, benchmark::Counter::kIsRate);
+  time_steps(state, *bonded_block_with_tool(1, static_cast<int>(state.range(0))));
 }
 BENCHMARK(BM_BondedBlockCuttingDamping)->Arg(0)->Arg(1)->Arg(2)->UseRealTime()
     ->Unit(benchmark::kMillisecond)->MinTime(3.0);

@@ -111,9 +111,12 @@ int resume(const fs::path& out, const std::vector<std::string>& args, const fs::
 
 struct Case {
   std::string scene, threads, transport;
+  std::vector<std::string> sets = {};  ///< more --set options: another damping, rolling springs
+  std::string tag = "";                ///< names the case when `sets` is not empty
 };
 void PrintTo(const Case& c, std::ostream* os) {
   *os << c.scene << ", " << c.threads << " DEM threads, " << c.transport;
+  for (const std::string& s : c.sets) *os << " " << s;
 }
 
 class Restart : public ::testing::TestWithParam<Case> {};
@@ -121,8 +124,10 @@ class Restart : public ::testing::TestWithParam<Case> {};
 TEST_P(Restart, StoppedKilledAndResumedRunsMatchTheUninterruptedOneBitForBit) {
   const Case& c = GetParam();
   const std::string scene = source("cases/cutting/" + c.scene + ".pbtxt");
-  const std::vector<std::string> args = short_cut(c.threads, c.transport);
-  const fs::path dir = fresh_dir("restart_" + c.scene + "_" + c.threads + "_" + c.transport);
+  std::vector<std::string> args = short_cut(c.threads, c.transport);
+  args.insert(args.end(), c.sets.begin(), c.sets.end());
+  const fs::path dir =
+      fresh_dir("restart_" + c.scene + c.tag + "_" + c.threads + "_" + c.transport);
   const std::vector<std::string> transport = {"--transport", c.transport};
 
   // A: straight through.
@@ -164,9 +169,15 @@ INSTANTIATE_TEST_SUITE_P(
     Cuts, Restart,
     ::testing::Values(Case{"dry_reduced", "1", "ipc"}, Case{"dry_reduced", "2", "inproc"},
                       Case{"saturated_reduced", "1", "ipc"}, Case{"saturated_reduced", "1", "inproc"},
-                      Case{"saturated_reduced", "2", "ipc"}, Case{"saturated_reduced", "2", "inproc"}),
+                      Case{"saturated_reduced", "2", "ipc"}, Case{"saturated_reduced", "2", "inproc"},
+                      // Dashpots, a held base and rolling springs (whose moments are state).
+                      Case{"dry_reduced_long", "2", "ipc",
+                           {"--set", "dem.contact.rolling_friction=0.1"}, "_rolling"},
+                      Case{"saturated_reduced_long_viscous", "1", "inproc",
+                           {"--set", "dem.contact.rolling_friction=0.1"}, "_rolling"}),
     [](const ::testing::TestParamInfo<Case>& info) {
-      return info.param.scene + "_" + info.param.threads + "threads_" + info.param.transport;
+      return info.param.scene + info.param.tag + "_" + info.param.threads + "threads_" +
+             info.param.transport;
     });
 
 // SIGUSR1 (a scheduler's warning before the time limit) writes a checkpoint and the run carries

@@ -1,5 +1,6 @@
 #include "run/reply_checks.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -44,6 +45,29 @@ void check_progress(const std::string& module, std::uint64_t reply_step, double 
     char text[96];
     std::snprintf(text, sizeof text, "reported the time %.9g s after %.9g s", reply_time_s, time_s);
     throw wire::ModuleFailure(module, text);
+  }
+}
+
+void check_scalar_names(const std::string& module,
+                        const google::protobuf::Map<std::string, double>& scalars) {
+  if (scalars.size() > kMaxReplyScalars) {
+    throw wire::ModuleFailure(module, "sent " + std::to_string(scalars.size()) +
+                                          " scalars (at most " + std::to_string(kMaxReplyScalars) +
+                                          ")");
+  }
+  for (const auto& [name, value] : scalars) {
+    const bool ok = !name.empty() && name.size() <= 64 &&
+                    std::all_of(name.begin(), name.end(), [](char c) {
+                      return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                             (c >= '0' && c <= '9') || c == '_';
+                    });
+    if (!ok) {
+      std::string shown;
+      for (char c : name.substr(0, 64)) shown += (c >= 32 && c < 127) ? c : '?';
+      throw wire::ModuleFailure(module, "sent a scalar named \"" + shown +
+                                            "\" (names are 1 to 64 letters, digits and "
+                                            "underscores)");
+    }
   }
 }
 

@@ -8,6 +8,8 @@
 #include <span>
 #include <string>
 
+#include <google/protobuf/map.h>
+
 #include "wire/message.hpp"
 #include "wire/module_client.hpp"
 
@@ -22,6 +24,14 @@ void check_init_reply(const std::string& module, const wire::InitReply& reply,
 /// `steps` further (at most that many when a guard stopped it), and a finite time no earlier.
 void check_progress(const std::string& module, std::uint64_t reply_step, double reply_time_s,
                     std::uint64_t step, double time_s, std::uint64_t steps, bool guard);
+
+/// The names of a reply's scalars (StepReport, FluidResult): 1 to 64 letters, digits and
+/// underscores each, at most kMaxReplyScalars of them. They become run.h5 dataset names and
+/// summary.json keys, where "../../x" or a thousand columns would fail the output instead of
+/// naming the module.
+inline constexpr std::size_t kMaxReplyScalars = 1000;
+void check_scalar_names(const std::string& module,
+                        const google::protobuf::Map<std::string, double>& scalars);
 
 /// The array `name` of a Frame: present, 1 to 4 components, `particles` rows. Sets `components`.
 std::span<const double> frame_array(const std::string& module, const wire::Message& frame,

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 
+#include "run/reply_checks.hpp"
+
 namespace rockcut::coupler {
 
 void RunClock::take_step_report(const wire::StepReport& report, const std::string& module) {
+  check_scalar_names(module, report.scalars());
   time_s = report.time_s();
   step = report.step();
   // protobuf maps have no stable order: sorted, every run writes the same columns.

@@ -86,6 +86,7 @@ void HalfStepExchange::exchange(RunClock& clock, unsigned steps, bool initial,
                  dem_.reply.envelope.step_report().time_s(), kinematics_step, t, 0, false);
   dem_.busy.read(dem_.reply.envelope);
   clock.scalars.clear();
+  check_scalar_names(fluid_.label(), fluid_.reply.envelope.fluid_result().scalars());
   for (const auto& [name, value] : fluid_.reply.envelope.fluid_result().scalars()) {
     clock.scalars.emplace_back("fluid_" + name, value);
   }

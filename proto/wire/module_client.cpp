@@ -24,6 +24,7 @@ ModuleClient::ModuleClient(zmq::context_t& context, std::string module_name,
   // disconnected before anything is buffered, and then named when the timeout passes.
   socket_.set(zmq::sockopt::maxmsgsize, kMaxMessageBytesBeforeInit);
   if (curve) {
+    curve_ = true;
     socket_.set(zmq::sockopt::curve_serverkey, curve->server_key);
     socket_.set(zmq::sockopt::curve_publickey, curve->public_key);
     socket_.set(zmq::sockopt::curve_secretkey, curve->secret_key);
@@ -74,11 +75,21 @@ void ModuleClient::receive(Message& reply, bool interruptible) {
         last.revents = 0;
       }
       if (last.revents & ZMQ_POLLIN) break;
-      throw ModuleFailure(name_, "stopped answering (no reply within " +
-                                     std::to_string(timeout_.count() / 1000.0).substr(0, 6) +
-                                     " s, the coupling timeout)");
+      const std::string within =
+          std::to_string(timeout_.count() / 1000.0).substr(0, 6) + " s, the coupling timeout";
+      if (curve_ && !answered_) {
+        // ZeroMQ drops a CURVE handshake that fails authentication without a word to either
+        // side: a first message unanswered is then most likely keys that do not match.
+        throw ModuleFailure(name_, "never answered (no reply to the first message within " +
+                                       within + "): with CURVE this is what keys that do not "
+                                       "match look like: check that --curve-keys holds the "
+                                       "module's server key and that the module was started "
+                                       "with CURVE and its own keys (coupler keygen)");
+      }
+      throw ModuleFailure(name_, "stopped answering (no reply within " + within + ")");
     }
   }
+  answered_ = true;
   try {
     reply.receive(socket_);
   } catch (const ProtocolError& e) {

@@ -74,6 +74,8 @@ class ModuleClient {
   zmq::socket_t socket_;
   std::chrono::milliseconds timeout_;
   ClientHooks hooks_;
+  bool curve_ = false;     ///< a CURVE session
+  bool answered_ = false;  ///< a reply has come: the CURVE handshake, if any, succeeded
 };
 
 }  // namespace rockcut::wire

@@ -167,6 +167,30 @@ TEST(WireFuzz, CurveAcceptsOnlyTheCouplersKey) {
   shut_down(owner, dem);
 }
 
+// Keys that do not match: ZeroMQ drops the failed CURVE handshake silently, so the coupler can only
+// time out; it says that this is what mismatched keys look like instead of "stopped answering".
+TEST(WireFuzz, MismatchedCurveKeysAreNamedAsTheLikelyCause) {
+  const fs::path dir = fresh_dir("curve_mismatch");
+  wire::make_curve_keys(dir / "module_keys", {"coupler", "dem_module", "fluid_module"});
+  wire::make_curve_keys(dir / "coupler_keys", {"coupler", "dem_module", "fluid_module"});
+  const std::string dem = "tcp://127.0.0.1:" + std::to_string(free_tcp_port());
+  const std::string fluid = "tcp://127.0.0.1:" + std::to_string(free_tcp_port());
+  const std::string module_keys = (dir / "module_keys").string();
+  const Spawned sd = spawn({bin("dem_module"), "--bind", dem, "--curve-keys", module_keys}, dir, "dem");
+  const Spawned sf =
+      spawn({bin("fluid_module"), "--bind", fluid, "--curve-keys", module_keys}, dir, "fluid");
+  KillOnExit kd{sd.pid}, kf{sf.pid};
+  std::string err;
+  const int code = run({bin("coupler"), "run", source("cases/verification/pressure_gradient.pbtxt"),
+                        "--out", (dir / "out").string(), "--transport", "tcp", "--dem-endpoint",
+                        dem, "--fluid-endpoint", fluid, "--curve-keys",
+                        (dir / "coupler_keys").string(), "--set", "coupling.timeout_s=1"},
+                       dir, "coupler", nullptr, &err);
+  EXPECT_EQ(code, 3) << err;
+  EXPECT_NE(err.find("keys that do not match"), std::string::npos) << err;
+  EXPECT_EQ(err.find("stopped answering"), std::string::npos) << err;
+}
+
 // A whole coupled run over CURVE gives the bits of plain tcp (and of ipc, by the transports test).
 TEST(WireFuzz, CurveRunIsBitIdenticalToPlainTcp) {
   const fs::path keys = fresh_dir("curve_run") / "keys";

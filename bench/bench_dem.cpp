@@ -1,9 +1,9 @@
-// DEM step throughput on the shared packing (../shared/bench/pack57k.txt, 57,636 discs): the
+// DEM step throughput on the benchmark packing (bench/data/pack57k.txt, 57,636 discs): the
 // bonded block being cut by the chisel, with bond shear springs and break checks on, for 1 and 2
-// threads. Reports particle-steps per second, the figure ../shared/bench/README.md gives for
+// threads. Reports particle-steps per second, the figure bench/data/README.md gives for
 // LAMMPS, LIGGGHTS and YADE on the same packing (k_n 1e10, k_t 2.5e10 Pa, friction 1, dt 2e-8 s).
 //
-// Run: build/bin/bench_dem [--packing PATH]   (default: ROCKCUT_SHARED_DIR/bench/pack57k.txt)
+// Run: build/bin/bench_dem [--packing PATH]   (default: bench/data/pack57k.txt)
 #include <benchmark/benchmark.h>
 
 #include <cstring>
@@ -16,7 +16,7 @@
 
 namespace {
 
-std::string g_packing = ROCKCUT_SHARED_DIR "/bench/pack57k.txt";
+std::string g_packing = ROCKCUT_BENCH_DATA_DIR "/pack57k.txt";
 
 // The file lists the discs in random order; like LAMMPS (atom_modify sort) and the specimen
 // generator, the bench numbers them in cell order. Read once; each benchmark copies it.

@@ -1,5 +1,5 @@
 // bench_fluid_step: one fluid step of the SP pore-pressure models (fluid_module/sp/) on the
-// 58,000-disc benchmark packing ../shared/bench/pack57k.txt (0.2 m x 0.1 m, radii 0.2-0.4 mm,
+// 58,000-disc benchmark packing bench/data/pack57k.txt (0.2 m x 0.1 m, radii 0.2-0.4 mm,
 // Table 1's h = 1.5 mm: ~23 listed neighbours per particle), on one thread (fluid.threads 1, the
 // default) unless a benchmark says otherwise.
 //
@@ -43,13 +43,13 @@ struct Packing {
   std::vector<double> position, radius;
 };
 
-// pack57k.txt if present (CI has ../shared beside the repository), else a jittered lattice of the
+// pack57k.txt (bench/data/), or where it is missing a jittered lattice of the
 // same size and density. pack57k lists its discs in random order; `cell_ordered` renumbers them
 // row by row of 0.8 mm cells, the order in which the DEM's specimen generator numbers its discs.
 Packing read_packing() {
   {
     Packing out;
-    std::ifstream in(std::string(ROCKCUT_SHARED_DIR) + "/bench/pack57k.txt");
+    std::ifstream in(std::string(ROCKCUT_BENCH_DATA_DIR) + "/pack57k.txt");
     std::string line;
     while (in && std::getline(in, line)) {
       if (line.empty() || line[0] == '#') continue;

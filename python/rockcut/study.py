@@ -14,7 +14,7 @@ Runs ladders of resolutions of the fluid verification scenes with both models th
 
 Ladders (each for `explicit` and `implicit`):
   size   particle size: finer lattices (terzaghi) or finer random packings (gaussian_pulse: windows
-         of ../shared/bench/pack57k.txt scaled to the same 40 mm domain), h / spacing fixed, the
+         of bench/data/pack57k.txt scaled to the same 40 mm domain), h / spacing fixed, the
          step a fixed fraction of h^2 / D (so space and time are refined together)
   size_h particle size at Table 1's h = 1.5 mm (h / spacing grows)
   size_sqrt  particle size with h ~ sqrt(spacing): h / spacing grows while h falls, the path on
@@ -112,7 +112,7 @@ def terzaghi_sets(model, ny, ratio, dt_factor):
 # ---- gaussian_pulse: windows of pack57k scaled to a 40 mm domain --------------------------------
 GAUSS_DOMAIN = 0.04
 GAUSS_T = 2.25e-4  # end time of the scene: the peak has halved
-PACK57K = os.path.join(ROOT, "..", "shared", "bench", "pack57k.txt")
+PACK57K = os.path.join(ROOT, "bench", "data", "pack57k.txt")
 
 
 def gaussian_runs(quick, work):

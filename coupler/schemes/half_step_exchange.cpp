@@ -28,8 +28,11 @@ void HalfStepExchange::exchange(RunClock& clock, unsigned steps, bool initial,
   dem_.link->request(dem_.request, dem_.reply);
   if (dem_.reply.envelope.has_step_report()) {
     const wire::StepReport& r = dem_.reply.envelope.step_report();
-    check_progress(dem_.label(), r.step(), r.time_s(), clock.step, clock.time_s, 0, true);
-    clock.take_step_report(r, dem_.label());  // a guard tripped on the completed step
+    // A guard tripped on the completed step, or on the way through the N steps: the report's
+    // scalars replace the last exchange's (the row and frame of the stop are written from them).
+    check_progress(dem_.label(), r.step(), r.time_s(), clock.step, clock.time_s, steps, true);
+    clock.scalars.clear();
+    clock.take_step_report(r, dem_.label());
   }
   if (!dem_.reply.envelope.has_kinematics()) {
     throw wire::ModuleFailure(dem_.label(), "answered Advance without Kinematics");

@@ -182,16 +182,20 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
   if (advance.steps() > 0 && !(dt > 0.0)) throw std::invalid_argument("Advance with dt_s <= 0");
   const unsigned full_steps = advance.split_last() && advance.steps() > 0 ? advance.steps() - 1
                                                                             : advance.steps();
+  bool tripped = false;
   for (unsigned k = 0; k < full_steps; ++k) {
     s.step(dt);
-    // A long dry Advance is checked on the way (the report checks again at its end): a blow-up
-    // stops within kGuardEverySteps steps, with the state that tripped the guard.
+    // A long Advance is checked on the way (the report checks again at its end): a blow-up stops
+    // within kGuardEverySteps steps, with the state that tripped the guard.
     if (k % kGuardEverySteps == kGuardEverySteps - 1 && k + 1 < full_steps &&
         check_guards(s, setup_.guards, setup_.initial_energy_j, s.kinetic_energy()).tripped()) {
+      tripped = true;
       break;
     }
   }
-  if (!advance.split_last()) return report(reply);
+  // A guard inside a split Advance ends it with the report that names the guard, not with
+  // kinematics of fewer steps than asked (which the coupler took for a module's failure).
+  if (tripped || !advance.split_last()) return report(reply);
 
   if (advance.steps() > 0) s.begin_step(dt);
   split_dt_s_ = advance.steps() > 0 ? dt : 0.0;

@@ -101,6 +101,25 @@ TEST(GuardsRun, RunawayKineticEnergyStopsAStepAboveTheLimit) {
   EXPECT_NE(refused.err.find("exceeds the dem_module limit dem_springs"), std::string::npos);
 }
 
+// The same blow-up in a coupled run with N = 1000 DEM steps per exchange: the guard trips inside
+// the DEM's split Advance, on its way through the 1000 steps (it checks every 50), and is reported
+// as the guard (exit 4), not as a module that answered with too few steps (exit 3).
+TEST(GuardsRun, AGuardInsideALongCoupledAdvanceIsTheGuard) {
+  std::string scene = lattice_scene(
+      "  damping { model: \"none\" }\n  initial_velocity_m_s { x: 0.01 y: 0.02 }\n"
+      "  walls { name: \"box\" closed: true vertex_m { x: -0.0011 y: -0.0011 }"
+      " vertex_m { x: 0.0191 y: -0.0011 } vertex_m { x: 0.0191 y: 0.0191 }"
+      " vertex_m { x: -0.0011 y: 0.0191 } }\n",
+      "end_time_s: 0.01 dt_s: 1.4e-6 ignore_limits: true");
+  scene += "fluid { model: \"implicit\" smoothing_length_m: 0.005 permeability_m2: 1e-14 }\n"
+           "coupling { interval: 1000 }\n";
+  const CouplerRun r = run_scene_text("guard_coupled_advance", scene);
+  expect_stopped_by(r, "kinetic_energy");
+  const double step = number(coupler::read_summary(r.out / "summary.json"), "steps");
+  EXPECT_NE(std::fmod(step, 1000.0), 0.0) << "the guard did not trip inside an Advance: " << step;
+  EXPECT_EQ(r.err.find("after 1000 steps"), std::string::npos) << r.err;
+}
+
 // Excessive overlap: a platen closing at 1 cm/s on one disc resting on a floor crushes it slowly
 // (no speed anywhere near the speed limit) until the overlap passes 0.25 of its radius.
 TEST(GuardsRun, ExcessiveOverlapStopsAQuasiStaticCrush) {

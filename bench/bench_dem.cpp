@@ -44,7 +44,6 @@ std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads, int
   DemSettings s;
   s.contact = {1e10, 2.5e10, 1.0, damping > 0 ? 0.1 : 0.0, damping > 1 ? 0.1 : 0.0};
   s.local_damping = damping == 0 ? 0.7 : 0.0;
-  s.bond_damping_ratio = s.contact.damping_ratio;
   s.threads = threads;
   WallSet walls;
   // The chisel touching the block's left edge, 20 mm deep, moving at 1 m/s (60 deg cutting angle).

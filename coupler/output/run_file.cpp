@@ -164,10 +164,7 @@ std::optional<std::string> stored_scene_text(const std::filesystem::path& out_di
     return std::nullopt;
   }
   try {
-    h5::Handle fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS), path, "cannot create access list");
-    h5::check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), path,
-              "cannot set the close degree");
-    h5::Handle file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "cannot open");
+    h5::Handle file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), path, "cannot open");
     return h5::read_string_attribute(file.get(), "scene", path + ": /");
   } catch (const std::runtime_error&) {
     return std::nullopt;

@@ -164,18 +164,33 @@ std::string refuse_reason(const Checkpoint& c, const scene::LoadedScene& now) {
   return "";
 }
 
-// Why checkpoint `c`, whose scene is `candidate`, is not the run in OUT (`coupler resume`): its
-// scene differs from the one OUT/run.h5 was written with beyond what a resume may change (a
-// checkpoint of another run copied into checkpoints/). Empty: it is this run's.
-std::string foreign_reason(const std::string& run_scene_text, const scene::LoadedScene& candidate,
-                           const fs::path& out_dir) {
-  scene::LoadedScene run;
+// The scene OUT/run.h5 was written with (`coupler resume` takes its scene from a checkpoint, so
+// this is what a checkpoint must match to belong to the run); none without a readable run.h5.
+// A scene that no longer parses is an error string for every checkpoint.
+struct RunScene {
+  std::optional<rockcut::Scene> scene;
+  std::string error;
+};
+RunScene run_scene_of(const fs::path& out_dir) {
+  RunScene r;
+  const std::optional<std::string> text = stored_scene_text(out_dir);
+  if (!text) return r;
   try {
-    run = scene::parse_scene(run_scene_text, (out_dir / "run.h5").string() + " (its scene)");
+    r.scene = scene::parse_scene(*text, (out_dir / "run.h5").string() + " (its scene)").scene;
   } catch (const scene::SceneError& e) {
-    return std::string("the run's own scene in run.h5 no longer validates: ") + e.what();
+    r.error = std::string("the run's own scene in run.h5 no longer validates: ") + e.what();
   }
-  const std::vector<std::string> differ = scene_differences(run.scene, candidate.scene, nullptr);
+  return r;
+}
+
+// Why a checkpoint whose scene is `candidate` is not the run's (a checkpoint of another run copied
+// into checkpoints/): its scene differs from the run's beyond what a resume may change. Empty: it
+// is the run's.
+std::string foreign_reason(const RunScene& run, const scene::LoadedScene& candidate,
+                           const fs::path& out_dir) {
+  if (!run.error.empty()) return run.error;
+  if (!run.scene) return "";
+  const std::vector<std::string> differ = scene_differences(*run.scene, candidate.scene, nullptr);
   if (differ.empty()) return "";
   std::string reason = "it belongs to another run: its scene differs from " +
                        (out_dir / "run.h5").string() + "'s in:";
@@ -196,8 +211,7 @@ int choose_checkpoint(const RunOptions& options, scene::LoadedScene& loaded,
   }
   // `coupler resume` takes the scene from the checkpoint: the run's own scene, in run.h5, is what
   // a checkpoint must match to belong to it.
-  const std::optional<std::string> run_scene =
-      options.resume ? stored_scene_text(options.out_dir) : std::nullopt;
+  const RunScene run_scene = options.resume ? run_scene_of(options.out_dir) : RunScene{};
   bool damaged_only = true;  // a refused scene or version holds for the older ones too
   for (std::size_t k = 0; k < files.size() && !checkpoint && damaged_only; ++k) {
     std::string reason;
@@ -209,7 +223,7 @@ int choose_checkpoint(const RunOptions& options, scene::LoadedScene& loaded,
       reason = refuse_reason(c, candidate);
       damaged_only = reason.empty();
       // A foreign checkpoint says nothing of the older ones, which may be the run's own.
-      if (reason.empty() && run_scene) reason = foreign_reason(*run_scene, candidate, options.out_dir);
+      if (reason.empty()) reason = foreign_reason(run_scene, candidate, options.out_dir);
       if (reason.empty()) {
         checkpoint = std::move(c);
         loaded = std::move(candidate);

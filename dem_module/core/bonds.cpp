@@ -103,10 +103,9 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
     shear[k] = fs;
     if constexpr (kDashpots) {
       const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
-      const double sqrt_m = sqrt_effective_mass(inv_m[i], inv_m[j]);
-      const double cn = cn_scale * sqrt_m, ct = ct_scale * sqrt_m;
-      dissipated += (cn * vn * vn + ct * vt * vt) * dt;
-      const double fn_total = fn + dashpot_force(cn, vn), fs_total = fs + dashpot_force(ct, vt);
+      const PairDashpots d = pair_dashpots(cn_scale, ct_scale, sqrt_effective_mass(inv_m[i], inv_m[j]),
+                                           vn, vt, dt, dissipated);
+      const double fn_total = fn + d.normal, fs_total = fs + d.tangential;
       const PairForce f = pair_force(fn_total, fs_total, nx, ny, tx, ty);  // on j
       out.add_pair(i, j, f.fx, f.fy, -fs_total * r[i], -fs_total * r[j]);
     } else {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 namespace rockcut::dem {
 
@@ -14,11 +15,29 @@ struct ContactLaw {
   double normal_stiffness_pa = 0.0;  ///< k_n [Pa] (N/m per metre of thickness)
   double shear_stiffness_pa = 0.0;   ///< k_s [Pa] (N/m per metre of thickness)
   double friction = 0.0;             ///< mu [-]
-  /// zeta [-] of the dashpots beside the springs (core/viscous_damping.hpp); 0: none.
+  /// zeta [-] of the dashpots beside the springs (core/viscous_damping.hpp), the bonds' too (the
+  /// DEM passes it to BondSet::compute); 0: none.
   double damping_ratio = 0.0;
   /// mu_r [-] of the rolling spring (core/rolling_resistance.hpp); 0: none.
   double rolling_friction = 0.0;
 };
+
+/// Calls f(dashpots, rolling) with std::bool_constant arguments for the law's dashpots
+/// (damping_ratio > 0) and rolling springs (rolling_friction > 0): the pair loops are compiled once
+/// per combination, so none tests them per pair, and one without either is the plain loop.
+template <class F>
+void with_pair_laws(const ContactLaw& law, F&& f) {
+  const bool dashpots = law.damping_ratio > 0.0, rolling = law.rolling_friction > 0.0;
+  if (dashpots && rolling) {
+    f(std::true_type{}, std::true_type{});
+  } else if (dashpots) {
+    f(std::true_type{}, std::false_type{});
+  } else if (rolling) {
+    f(std::false_type{}, std::true_type{});
+  } else {
+    f(std::false_type{}, std::false_type{});
+  }
+}
 
 /// F_n [N/m] of a contact with overlap > 0 [m], compression positive.
 [[gnu::always_inline]] inline double contact_normal_force(double kn_pa, double overlap_m) { return kn_pa * overlap_m; }

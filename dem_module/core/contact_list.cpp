@@ -116,12 +116,12 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
       // the linear spring-dashpot whose restitution core/viscous_damping.hpp states); the
       // tangential one while the contact sticks (sliding dissipates through friction).
       const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
-      const double sqrt_m = sqrt_effective_mass(inv_m[i], inv_m[j]);
-      const double cn = cn_scale * sqrt_m, ct = fs == trial ? ct_scale * sqrt_m : 0.0;
-      viscous += (cn * vn * vn + ct * vt * vt) * dt;
-      const double fs_d = dashpot_force(ct, vt);
-      const PairForce f = pair_force(fn + dashpot_force(cn, vn), fs + fs_d, nx, ny, tx, ty);
-      out.add_pair(i, j, f.fx, f.fy, moment_i - fs_d * r[i], moment_j - fs_d * r[j]);
+      const PairDashpots d = pair_dashpots(cn_scale, fs == trial ? ct_scale : 0.0,
+                                           sqrt_effective_mass(inv_m[i], inv_m[j]), vn, vt, dt,
+                                           viscous);
+      const PairForce f = pair_force(fn + d.normal, fs + d.tangential, nx, ny, tx, ty);
+      out.add_pair(i, j, f.fx, f.fy, moment_i - d.tangential * r[i],
+                   moment_j - d.tangential * r[j]);
     } else {
       const PairForce f = pair_force(fn, fs, nx, ny, tx, ty);  // on j
       out.add_pair(i, j, f.fx, f.fy, moment_i, moment_j);
@@ -135,16 +135,9 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
 void ContactList::compute(const Particles& p, const ContactLaw& law, double dt,
                           std::size_t begin, std::size_t end, ForceView out,
                           ContactDissipation& sums) {
-  const bool dashpots = law.damping_ratio > 0.0, rolling = law.rolling_friction > 0.0;
-  if (dashpots && rolling) {
-    compute_impl<true, true>(p, law, dt, begin, end, out, sums);
-  } else if (dashpots) {
-    compute_impl<true, false>(p, law, dt, begin, end, out, sums);
-  } else if (rolling) {
-    compute_impl<false, true>(p, law, dt, begin, end, out, sums);
-  } else {
-    compute_impl<false, false>(p, law, dt, begin, end, out, sums);
-  }
+  with_pair_laws(law, [&](auto dashpots, auto rolling) {
+    compute_impl<dashpots(), rolling()>(p, law, dt, begin, end, out, sums);
+  });
 }
 
 double ContactList::strain_energy(const Particles& p, const ContactLaw& law) const {

@@ -182,7 +182,7 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
   const ForceView out = buffers_.view(t, particles_, p0, p1);
   const auto [b0, b1] = share(bonds_.size(), t, threads);
   bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken,
-                 settings_.contact.normal_stiffness_pa, settings_.bond_damping_ratio,
+                 settings_.contact.normal_stiffness_pa, settings_.contact.damping_ratio,
                  sums.pairs.viscous_j);
   if (settings_.contact.normal_stiffness_pa > 0) {
     const auto [c0, c1] = share(contacts_.size(), t, threads);
@@ -319,10 +319,11 @@ void DemSystem::remove_broken_bonds() {
 }
 
 std::size_t DemSystem::add_clamped_group(std::vector<std::uint32_t> particles,
-                                         double velocity_y_m_s) {
+                                         double velocity_y_m_s, bool fixed) {
   ClampedGroup g;
   g.particles = std::move(particles);
   g.velocity_y_m_s = velocity_y_m_s;
+  g.fixed = fixed;
   clamped_.push_back(std::move(g));
   // The present forces become the first reaction; no step has been taken with it, so no work.
   const double boundary_work = ledger_.boundary_work_j;
@@ -330,13 +331,6 @@ std::size_t DemSystem::add_clamped_group(std::vector<std::uint32_t> particles,
   ledger_.boundary_work_j = boundary_work;
   reset_clamped_velocities();
   return clamped_.size() - 1;
-}
-
-std::size_t DemSystem::add_fixed_group(std::vector<std::uint32_t> particles) {
-  const std::size_t k = add_clamped_group(std::move(particles), 0.0);
-  clamped_[k].fixed = true;
-  reset_clamped_velocities();
-  return k;
 }
 
 void DemSystem::hold_clamped_groups() {

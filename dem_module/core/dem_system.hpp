@@ -31,11 +31,10 @@ struct PrescribedMotion {
 struct DemSettings {
   double gravity_x_m_s2 = 0.0;
   double gravity_y_m_s2 = 0.0;
-  ContactLaw contact;          ///< all-zero stiffness: discs pass through each other (no contacts)
+  /// All-zero stiffness: discs pass through each other (no contacts). Its damping_ratio is that of
+  /// every dashpot, the bonds' too (core/viscous_damping.hpp).
+  ContactLaw contact;
   double local_damping = 0.0;  ///< alpha_d of eq. 10 (Potyondy & Cundall 2004); 0: none
-  /// zeta of the bonds' dashpots (core/viscous_damping.hpp); contact.damping_ratio is the
-  /// contacts' and the walls'. 0: none.
-  double bond_damping_ratio = 0.0;
   double skin_m = 0.0;         ///< Verlet skin of the neighbour list; 0: chosen from the radii
   int threads = 1;             ///< OpenMP threads of the pair loops
   std::optional<PrescribedMotion> prescribed_motion;
@@ -47,8 +46,7 @@ struct DemSettings {
 struct ClampedGroup {
   std::vector<std::uint32_t> particles;
   double velocity_y_m_s = 0.0;
-  /// Held in x and in spin too, at rest (velocity_y_m_s 0): the rock mass a cut block belongs to.
-  bool fixed = false;
+  bool fixed = false;  ///< held in x and spin too, at rest (add_clamped_group)
   double reaction_y_n_per_m = 0.0;  ///< sum of the internal y forces on the group at the last step
 };
 
@@ -80,10 +78,10 @@ class DemSystem {
   void set_external_force(std::span<const double> external);
   /// Holds the y velocity of `particles` at velocity_y_m_s from now on (dry scenes: an external y
   /// force on them is cancelled too). Returns the group's index for clamped_group().
-  std::size_t add_clamped_group(std::vector<std::uint32_t> particles, double velocity_y_m_s);
+  /// `fixed`: held at rest in x and spin too (velocity_y_m_s 0), the rock mass under a cut block.
+  std::size_t add_clamped_group(std::vector<std::uint32_t> particles, double velocity_y_m_s,
+                                bool fixed = false);
   const ClampedGroup& clamped_group(std::size_t k) const { return clamped_[k]; }
-  /// Holds `particles` at rest from now on, translation and spin (a clamped group with `fixed`).
-  std::size_t add_fixed_group(std::vector<std::uint32_t> particles);
 
   const Particles& particles() const { return particles_; }
   const BondSet& bonds() const { return bonds_; }

@@ -45,4 +45,20 @@ inline double dashpot_scale(double zeta, double stiffness_pa) { return 2.0 * zet
 /// velocity v [m/s] with coefficient c [kg/(m s)]; its dissipation over dt is c v^2 dt.
 [[gnu::always_inline]] inline double dashpot_force(double c, double velocity) { return -c * velocity; }
 
+/// The normal and the tangential dashpot of one pair (bond, contact, disc and wall).
+struct PairDashpots {
+  double normal, tangential;  ///< [N/m], compression positive and along t
+};
+
+/// Both dashpots of a pair with sqrt(m_eff) `sqrt_m` at relative velocities vn, vt, their
+/// coefficients dashpot_scale() x sqrt_m (ct_scale 0: no tangential dashpot, a sliding contact);
+/// adds their dissipation over dt, c v^2 dt, to `dissipated_j`.
+[[gnu::always_inline]] inline PairDashpots pair_dashpots(double cn_scale, double ct_scale,
+                                                        double sqrt_m, double vn, double vt,
+                                                        double dt, double& dissipated_j) {
+  const double cn = cn_scale * sqrt_m, ct = ct_scale * sqrt_m;
+  dissipated_j += (cn * vn * vn + ct * vt * vt) * dt;
+  return {dashpot_force(cn, vn), dashpot_force(ct, vt)};
+}
+
 }  // namespace rockcut::dem

@@ -143,14 +143,12 @@ void WallSet::compute_impl(const Particles& p, const ContactLaw& law, double dt,
     }
     double fn_total = fn, fs_total = fs;
     if constexpr (kDashpots) {  // as the contacts' (core/contact_list.cpp), m_eff = m_i
-      const double vn = dvx * nx + dvy * ny;
-      const double sqrt_m = sqrt_effective_mass(p.inv_mass[i], 0.0);
-      const double cn = cn_scale * sqrt_m, ct = fs == trial ? ct_scale * sqrt_m : 0.0;
-      sums.viscous_j += (cn * vn * vn + ct * vt * vt) * dt;
-      const double fs_d = dashpot_force(ct, vt);
-      fn_total += dashpot_force(cn, vn);
-      fs_total += fs_d;
-      moment -= fs_d * r;
+      const PairDashpots d = pair_dashpots(cn_scale, fs == trial ? ct_scale : 0.0,
+                                           sqrt_effective_mass(p.inv_mass[i], 0.0),
+                                           dvx * nx + dvy * ny, vt, dt, sums.viscous_j);
+      fn_total += d.normal;
+      fs_total += d.tangential;
+      moment -= d.tangential * r;
     }
     const PairForce f = pair_force(fn_total, fs_total, nx, ny, tx, ty);  // on the disc
     const double fx = f.fx, fy = f.fy;
@@ -167,16 +165,9 @@ void WallSet::compute(const Particles& p, const ContactLaw& law, double dt, Forc
     b.previous_force_y = b.force_y;
     b.force_x = b.force_y = 0.0;
   }
-  const bool dashpots = law.damping_ratio > 0.0, rolling = law.rolling_friction > 0.0;
-  if (dashpots && rolling) {
-    compute_impl<true, true>(p, law, dt, out, sums);
-  } else if (dashpots) {
-    compute_impl<true, false>(p, law, dt, out, sums);
-  } else if (rolling) {
-    compute_impl<false, true>(p, law, dt, out, sums);
-  } else {
-    compute_impl<false, false>(p, law, dt, out, sums);
-  }
+  with_pair_laws(law, [&](auto dashpots, auto rolling) {
+    compute_impl<dashpots(), rolling()>(p, law, dt, out, sums);
+  });
   // Work of each body on the discs over the last drift: the trapezoid of its force, as Verlet
   // moves under the mean of the forces at both ends of a step.
   for (const WallBody& b : bodies_) {

@@ -266,14 +266,13 @@ DemSetup build_dem(const rockcut::Dem& dem) {
   settings.gravity_y_m_s2 = dem.gravity_m_s2().y();
   const DampingChoice damping = damping_choice(dem);
   settings.local_damping = damping.local_coefficient;
-  settings.bond_damping_ratio = damping.damping_ratio;
   settings.skin_m = dem.skin_m();
   settings.threads = static_cast<int>(dem.threads());
   if (dem.has_contact()) {
     settings.contact = {dem.contact().normal_stiffness_pa(), dem.contact().shear_stiffness_pa(),
-                        dem.contact().friction(), damping.damping_ratio,
-                        dem.contact().rolling_friction()};
+                        dem.contact().friction(), 0.0, dem.contact().rolling_friction()};
   }
+  settings.contact.damping_ratio = damping.damping_ratio;  // the bonds' dashpots too
   if (dem.has_prescribed_motion()) {
     const rockcut::PrescribedMotion& m = dem.prescribed_motion();
     PrescribedMotion motion;
@@ -355,7 +354,7 @@ DemSetup build_dem(const rockcut::Dem& dem) {
                                   std::to_string(dem.fixed_base_height_m()) +
                                   " m holds no disc centre; make it at least a disc radius");
     }
-    setup.system->add_fixed_group(std::move(base));
+    setup.system->add_clamped_group(std::move(base), 0.0, /*fixed=*/true);
   }
   if (setup.rig.clamped_ends) {
     const double v = dem.loading_test().platen_speed_m_s();

@@ -27,7 +27,6 @@ DemSystem bonded_pair(double zeta, double v0) {
   BondSet bonds = test::bond_all_touching(p, {kKn, kKs, 1e9, 1e9});  // unbreakable here
   DemSettings s;
   s.contact = {kKn, kKs, 1.0, zeta, 0.0};
-  s.bond_damping_ratio = zeta;
   return DemSystem(std::move(p), s, std::move(bonds));
 }
 
@@ -89,8 +88,7 @@ TEST(ViscousDamping, ARigidlyMovingChipKeepsItsMomentumAndSpin) {
     BondSet bonds = test::bond_all_touching(p, {kKn, kKs, 1e9, 1e9});
     DemSettings s;
     s.contact = {kKn, kKs, 1.0, zeta, 0.0};
-    s.bond_damping_ratio = zeta;
-    s.local_damping = alpha;
+      s.local_damping = alpha;
     return DemSystem(std::move(p), s, std::move(bonds));
   };
   DemSystem dashpots = spinning(0.1, 0.0), local = spinning(0.0, 0.7);
@@ -183,10 +181,9 @@ TEST(FixedGroup, HeldDiscsStayAtRestAndTheLedgerCloses) {
     BondSet bonds = test::bond_all_touching(p, {kKn, kKs, 1e9, 1e9});
     DemSettings s;
     s.contact = {kKn, kKs, 1.0, zeta, 0.0};
-    s.bond_damping_ratio = zeta;
-    DemSystem sys(std::move(p), s, std::move(bonds));
+      DemSystem sys(std::move(p), s, std::move(bonds));
     const double e0 = sys.kinetic_energy();
-    sys.add_fixed_group({0});
+    sys.add_clamped_group({0}, 0.0, /*fixed=*/true);
     const double dt = 0.05 * std::sqrt(pair_mass() / kKn);
     for (int k = 0; k < 20000; ++k) sys.step(dt);
     const Particles& q = sys.particles();

@@ -20,7 +20,6 @@ DemSystem pressed_block() {
   BondSet bonds = test::bond_all_touching(p, {1e10, 2.5e10, 2e3, 4e3});
   DemSettings s;
   s.contact = {1e10, 2.5e10, 0.5, 0.1, 0.1};
-  s.bond_damping_ratio = 0.1;
   WallSet walls;
   walls.add_body("press", {-0.001, 0.0, -0.001, 0.02}, false, 2.0, 0.0);
   return DemSystem(std::move(p), s, std::move(bonds), std::move(walls));

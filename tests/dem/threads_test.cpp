@@ -31,7 +31,6 @@ DemSystem loaded_block(int threads, const Laws& laws = kLocal) {
   DemSettings s;
   s.contact = {1e10, 2.5e10, 0.5, laws.damping_ratio, laws.rolling_friction};
   s.local_damping = laws.local_damping;
-  s.bond_damping_ratio = laws.damping_ratio;
   s.threads = threads;
   WallSet walls;
   walls.add_body("press", {-0.001, 0.0, -0.001, 0.04}, false, 2.0, 0.0);  // pushes from the left

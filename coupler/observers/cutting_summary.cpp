@@ -1,6 +1,8 @@
 #include "observers/cutting_summary.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <span>
 
 #include "run/named_values_state.hpp"
 
@@ -15,7 +17,30 @@ CuttingSummary::CuttingSummary(const rockcut::Scene& scene, std::vector<std::str
   active_ = true;
   steady_after_m_ = tool.steady_after_m() > 0 ? tool.steady_after_m() : 2.0 * tool.cutting_depth_m();
   width_m_ = tool.width_m();
+  cut_depth_m_ = tool.cutting_depth_m();
 }
+
+namespace {
+// The p-quantile with linear interpolation between order statistics at rank p (n - 1).
+double quantile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double rank = p * static_cast<double>(values.size() - 1);
+  const auto below = static_cast<std::size_t>(std::floor(rank));
+  const std::size_t above = std::min(below + 1, values.size() - 1);
+  return values[below] + (rank - static_cast<double>(below)) * (values[above] - values[below]);
+}
+
+double standard_deviation(const std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  double mean = 0.0;
+  for (double v : values) mean += v;
+  mean /= static_cast<double>(values.size());
+  double sum = 0.0;
+  for (double v : values) sum += (v - mean) * (v - mean);
+  return std::sqrt(sum / static_cast<double>(values.size()));
+}
+}  // namespace
 
 void CuttingSummary::observe(const std::vector<std::pair<std::string, double>>& scalars) {
   if (!active_) return;
@@ -27,6 +52,7 @@ void CuttingSummary::observe(const std::vector<std::pair<std::string, double>>& 
   sum_x_ += -*fx;
   sum_y_ += *fy;
   peak_x_ = std::max(peak_x_, -*fx);
+  steady_fh_.push_back(-*fx);
   in_contact_ += (*fx != 0.0 || *fy != 0.0);
   ++samples_;
   for (NodeMean& node : nodes_) {
@@ -47,6 +73,9 @@ void CuttingSummary::write(Summary& summary) const {
   summary.set("force_horizontal_mean_n", fh * width_m_);
   summary.set("force_vertical_mean_n", fv * width_m_);
   summary.set("force_horizontal_peak_n_per_m", peak_x_);
+  summary.set("force_horizontal_p95_n_per_m", quantile(steady_fh_, 0.95));
+  summary.set("force_horizontal_std_n_per_m", standard_deviation(steady_fh_));
+  summary.set("specific_energy_mpa", fh / cut_depth_m_ * 1e-6);
   summary.set("tool_contact_fraction",
               samples_ ? static_cast<double>(in_contact_) / static_cast<double>(samples_) : 0.0);
   summary.set("steady_samples", static_cast<std::int64_t>(samples_));
@@ -68,6 +97,7 @@ void CuttingSummary::save_state(state::StateArchive& a) const {
   std::vector<double> nodes;
   for (const NodeMean& n : nodes_) nodes.insert(nodes.end(), {n.sum_pa, static_cast<double>(n.samples)});
   a.put("cutting_node_sums", std::move(nodes), 2);
+  a.put("cutting_steady_fh", std::span<const double>(steady_fh_));
   save_named_values(a, "cutting_last", last_);
 }
 
@@ -83,6 +113,7 @@ void CuttingSummary::load_state(const state::StateArchive& a) {
     nodes_[k].sum_pa = nodes[2 * k];
     nodes_[k].samples = static_cast<std::uint64_t>(nodes[2 * k + 1]);
   }
+  a.get("cutting_steady_fh", steady_fh_, samples_);
   last_ = load_named_values(a, "cutting_last");
 }
 

@@ -11,6 +11,12 @@
 // the time: force_horizontal_peak_n_per_m is the largest resisting force of the steady part (what
 // sizes a tooth) and tool_contact_fraction the share of its samples in which the tool touched any
 // disc (force not exactly 0).
+// The engineer's figures of the same steady part: force_horizontal_p95_n_per_m, the 95th percentile
+// of the resisting force over the steady samples (linear interpolation between the order
+// statistics at rank 0.95 (n - 1), numpy's default); force_horizontal_std_n_per_m, their standard
+// deviation (population, divided by n); specific_energy_mpa, E_sp = F_h / (d w) = the mean resisting
+// force per metre of width over the cut depth d [N/m^2 = J/m^3], written in MPa (= MJ/m^3): the
+// work per volume of rock cut.
 // Pressure nodes (coupled scenes): pressure_<node>_mean_pa is the mean over the steady samples of
 // the node's average p - p_hydro (fluid_probe_<node>_pa), over the samples in which the node
 // held at least one particle centre; pressure_<node>_samples counts them.
@@ -41,7 +47,7 @@ class CuttingSummary : public RunObserver {
     write(summary);
     return true;
   }
-  /// Checkpoint: the steady-part sums and the last sample.
+  /// Checkpoint: the steady-part sums, the steady horizontal forces and the last sample.
   void save_state(state::StateArchive& a) const override;
   void load_state(const state::StateArchive& a) override;
 
@@ -49,9 +55,11 @@ class CuttingSummary : public RunObserver {
   bool active_ = false;
   double steady_after_m_ = 0.0;
   double width_m_ = 0.0;
+  double cut_depth_m_ = 0.0;
   double sum_x_ = 0.0, sum_y_ = 0.0;
   double peak_x_ = 0.0;
   std::uint64_t samples_ = 0, in_contact_ = 0;
+  std::vector<double> steady_fh_;  // the resisting force of every steady sample, for p95 and std
   struct NodeMean {
     std::string name;
     std::string pa_key, particles_key;  // its time-series columns

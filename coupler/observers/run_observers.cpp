@@ -1,5 +1,6 @@
 #include "observers/run_observers.hpp"
 
+#include "observers/analytical_cutting.hpp"
 #include "observers/calibration_summary.hpp"
 #include "observers/cutting_summary.hpp"
 #include "observers/energy_budget.hpp"
@@ -19,6 +20,8 @@ void register_observers(const rockcut::Scene& scene, const TimePlan& plan,
     std::vector<std::string> node_names;
     for (const PressureNodeBox& n : nodes) node_names.push_back(n.name);
     observers.add(std::make_unique<CuttingSummary>(scene, std::move(node_names)));
+    // After the cutting summary: its ratios read the summary's DEM forces.
+    if (scene.has_rock()) observers.add(std::make_unique<AnalyticalCutting>(scene));
   }
   if (!nodes.empty()) {
     observers.add(std::make_unique<PressureNodeProbes>(std::move(nodes), inputs.dem_label));

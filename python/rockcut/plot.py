@@ -4,6 +4,9 @@ A cutting run (a tool's time series) gets
   OUT/force.png   the tool forces against tool travel: the force resisting the cut (-F_x) and the
                   vertical force on the tool (F_y, positive up), the steady part shaded and its
                   means drawn as lines (coupler/observers/cutting_summary.hpp defines the steady part);
+                  a run whose scene has a `rock` block also gets each analytical model's horizontal
+                  force as a dotted line, read from summary.json's analytical_* keys
+                  (docs/cutting_models.md), never computed here;
   OUT/damage.png  the discs of the last complete frame as circles of their radius, coloured by
                   damage D = 1 - bonds / initial bonds (paper figures 11-12), with the chisel;
   OUT/breaks.png  where bonds broke, coloured by mode (tensile, shear).
@@ -75,6 +78,27 @@ def run_name(out):
     return os.path.basename(os.path.normpath(out))
 
 
+# The analytical models of summary.json (coupler/observers/analytical_cutting.hpp): key stem, label,
+# colour. Evans and Nishimatsu give peak forces, Merchant/Miedema and the hyperbaric bound forces
+# of continuous shearing.
+ANALYTICAL_MODELS = (
+    ("evans", "Evans, tensile chip (peak)", "tab:green"),
+    ("nishimatsu", "Nishimatsu, shear plane (peak)", "tab:purple"),
+    ("merchant", "Merchant/Miedema flow type", "tab:red"),
+    ("hyperbaric", "hyperbaric bound (cavitation)", "tab:brown"),
+)
+
+
+def analytical_lines(summary):
+    """[(key stem, label, colour, horizontal force [kN/m])] of the models summary.json holds."""
+    lines = []
+    for stem, label, colour in ANALYTICAL_MODELS:
+        value = summary.get(f"analytical_{stem}_force_horizontal_n_per_m")
+        if isinstance(value, (int, float)) and np.isfinite(value):
+            lines.append((stem, label, colour, value / 1e3))
+    return lines
+
+
 def plot_force(out, ts, tool, summary):
     if not {"tool_travel_m", "tool_force_x_n_per_m", "tool_force_y_n_per_m"} <= ts.keys():
         print(f"{out}: no tool force time series; force.png not written", file=sys.stderr)
@@ -103,6 +127,13 @@ def plot_force(out, ts, tool, summary):
                   label=f"mean {mh:.3g} kN/m ({mh * w * 1e3:.3g} N on {w * 1e3:g} mm)")
         ax.hlines(mv, x0, x1, color="darkred", lw=2, ls="--",
                   label=f"mean {mv:.3g} kN/m ({mv * w * 1e3:.3g} N on {w * 1e3:g} mm)")
+    # The hyperbaric bound of a dry run is the Merchant force (no pore water): drawn once.
+    drawn = set()
+    for stem, label, colour, kn in analytical_lines(summary):
+        if stem == "hyperbaric" and round(kn, 9) in drawn:
+            continue
+        drawn.add(round(kn, 9))
+        ax.axhline(kn, color=colour, lw=1.2, ls=":", label=f"{label}: {kn:.3g} kN/m")
     ax.axhline(0, color="k", lw=0.5)
     ax.set_xlabel("tool travel into the specimen [mm]")
     ax.set_ylabel("force on the tool [kN per m of width]")

@@ -206,8 +206,10 @@ def runs_note(s):
     return f"\nmean of {n} specimen seeds; bars: their range, dots: each seed"
 
 
-def line_figure(s, filename, title, series, ylabel, scale, against_pressure):
-    """One panel of lines: series = [(key, legend label, colour)], values multiplied by `scale`."""
+def line_figure(s, filename, title, series, ylabel, scale, against_pressure, models=()):
+    """One panel of lines: series = [(key, legend label, colour)], values multiplied by `scale`.
+    `models` = [(key, legend label, colour)]: analytical values per value, drawn dashed with crosses
+    beside the runs (the same for every seed: summary.json's, never recomputed here)."""
     remove_stale(s, filename)
     cols = s.columns([k for k, _, _ in series], filename)
     if not cols:
@@ -220,6 +222,10 @@ def line_figure(s, filename, title, series, ylabel, scale, against_pressure):
     for key, label, colour in series:
         if key in cols:
             plot_key(ax, s, x, key, scale, "o-", colour, label)
+    for key, label, colour in models:
+        column = s.column(key)
+        if column is not None:
+            plot_series(ax, x, column * scale, "x--", color=colour, label=label)
     ax.axhline(0, color="k", lw=0.5)
     value_axis(s, ax, is_pressure)
     ax.set_xlabel(xlabel)
@@ -233,7 +239,15 @@ def fig_forces(s):
     line_figure(s, "fig08_forces.png", "Mean tool forces over the steady part of the cut (fig. 8)",
                 [("force_horizontal_mean_n_per_m", "horizontal (resisting the cut)", "tab:blue"),
                  ("force_vertical_mean_n_per_m", "vertical (up > 0)", "tab:orange")],
-                "mean force on the tool [kN per m of width]", 1e-3, against_pressure=True)
+                "mean force on the tool [kN per m of width]", 1e-3, against_pressure=True,
+                models=analytical_series())
+
+
+def analytical_series():
+    """The analytical models' horizontal forces (summary.json's analytical_* keys of a scene with
+    a rock block, docs/cutting_models.md) as line_figure models."""
+    return [(f"analytical_{stem}_force_horizontal_n_per_m", label, colour)
+            for stem, label, colour in plot.ANALYTICAL_MODELS]
 
 
 def fig_pressure_p1(s):

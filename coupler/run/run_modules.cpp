@@ -1,6 +1,10 @@
 #include "run/run_modules.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
+#include <string_view>
 
 #include "run/ipc_directory.hpp"
 #include "run/reply_checks.hpp"
@@ -30,6 +34,27 @@ constexpr std::chrono::milliseconds kStateTimeout{600000};
 
 }  // namespace
 
+fs::path module_beside_or_on_path(const fs::path& coupler_dir, const std::string& name) {
+  const fs::path beside = coupler_dir / name;
+  if (::access(beside.c_str(), X_OK) == 0) return beside;
+  // An installation may put the modules in another directory of PATH than the coupler (a
+  // cluster's software modules, a container's /usr/bin beside a user's own coupler).
+  if (const char* path = std::getenv("PATH")) {
+    std::string_view dirs(path);
+    while (!dirs.empty()) {
+      const auto colon = dirs.find(':');
+      const std::string_view dir = dirs.substr(0, colon);
+      if (!dir.empty()) {
+        const fs::path candidate = fs::path(dir) / name;
+        if (::access(candidate.c_str(), X_OK) == 0 && !fs::is_directory(candidate)) return candidate;
+      }
+      if (colon == std::string_view::npos) break;
+      dirs.remove_prefix(colon + 1);
+    }
+  }
+  return beside;  // not found: starting it fails with the path the coupler looked at first
+}
+
 std::string join_names(const google::protobuf::RepeatedPtrField<std::string>& names) {
   std::string out;
   for (const auto& s : names) out += (out.empty() ? "" : ", ") + s;
@@ -56,7 +81,7 @@ RunModules::~RunModules() {
 }
 
 fs::path RunModules::module_executable(const std::string& from_scene, const char* name) const {
-  if (from_scene.empty()) return options_.module_dir / name;
+  if (from_scene.empty()) return module_beside_or_on_path(options_.module_dir, name);
   fs::path p(from_scene);
   // A relative path in a scene is relative to the scene file, so cases can carry their modules.
   if (p.is_relative()) p = loaded_.path.parent_path() / p;

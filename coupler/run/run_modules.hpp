@@ -36,6 +36,11 @@ struct BusyTime {
 
 /// "a, b, c": a list of names (fields, models) for a message.
 std::string join_names(const google::protobuf::RepeatedPtrField<std::string>& names);
+/// A module program: `name` beside the coupler when it is there (the build tree, an installation's
+/// bin/), else the first executable `name` on PATH, else the path beside the coupler (whose start
+/// then fails naming it).
+std::filesystem::path module_beside_or_on_path(const std::filesystem::path& coupler_dir,
+                                               const std::string& name);
 
 struct RunModule {
   std::unique_ptr<ModuleLink> link;

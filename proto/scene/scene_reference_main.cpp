@@ -6,6 +6,7 @@
 #include <google/protobuf/descriptor.pb.h>
 
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -207,17 +208,30 @@ int fail(const std::string& message) {
   return 2;
 }
 
+// The descriptor set: an installation keeps it in ../share/rockcut/ beside bin/; a build tree
+// reads it where protoc wrote it.
+std::string default_descriptor_set() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto installed = exe.parent_path().parent_path() / "share" / "rockcut" / "scene_descriptor.pb";
+    if (std::filesystem::is_regular_file(installed, ec)) return installed.string();
+  }
+  return ROCKCUT_SCENE_DESCRIPTOR_SET;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string set_path = ROCKCUT_SCENE_DESCRIPTOR_SET, output, field_docs;
+  std::string set_path = default_descriptor_set(), output, field_docs;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if ((arg == "-o" || arg == "--field-docs") && i + 1 < argc) {
       (arg == "-o" ? output : field_docs) = argv[++i];
     } else if (arg == "-h" || arg == "--help") {
       std::cout << "usage: scene_reference [DESCRIPTOR_SET] [-o FILE] [--field-docs FILE]\n"
-                   "Prints the scene field reference (Markdown); default set: " ROCKCUT_SCENE_DESCRIPTOR_SET "\n";
+                   "Prints the scene field reference (Markdown); default set: "
+                << default_descriptor_set() << "\n";
       return 0;
     } else if (!arg.empty() && arg[0] != '-') {
       set_path = arg;

@@ -1,4 +1,5 @@
-"""rockcut VERB ...: the command-line entry (scripts/rockcut, or python3 -m rockcut)."""
+"""rockcut VERB ...: the command-line entry (`rockcut` once installed with pip, scripts/rockcut in a
+checkout, or python3 -m rockcut)."""
 import importlib
 import sys
 
@@ -28,7 +29,7 @@ USAGE = "usage: rockcut VERB [options]   (rockcut VERB --help for a verb's optio
 
 def usage():
     width = max(map(len, VERBS))
-    lines = [USAGE, "", "The tool around the coupler (build/bin/coupler runs a scene). Verbs:"]
+    lines = [USAGE, "", "The tool around the coupler (`coupler run CASE` runs a scene). Verbs:"]
     lines += [f"  {verb:<{width}}  {what}" for verb, (_, what) in VERBS.items()]
     lines += ["", "From Python: import rockcut; run = rockcut.read_run(\"out/saturated_reduced\")"]
     return "\n".join(lines)
@@ -49,5 +50,10 @@ def main(argv):
     return module.main(rest) or 0
 
 
-if __name__ == "__main__":
+def entry():
+    """The `rockcut` command of an installed package (pyproject.toml's console script)."""
     sys.exit(main(sys.argv[1:]))
+
+
+if __name__ == "__main__":
+    entry()

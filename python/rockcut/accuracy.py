@@ -35,7 +35,11 @@ from . import runs
 from .run_data import read_summary, scalar_fields
 from .stats import mean, sem
 
-SCENE = runs.case("cutting", "saturated_reduced.pbtxt")
+
+
+def scene():
+    """The study's scene, the default saturated reduced cut."""
+    return runs.case("cutting", "saturated_reduced.pbtxt")
 BASE = ["time.end_time_s=0.025", "dem.tool.steady_after_m=0.01", "output.frame_interval_s=0"]
 KEYS = ["force_horizontal_mean_n_per_m", "force_vertical_mean_n_per_m", "breaks",
         "pressure_p1_mean_pa", "pressure_p2_mean_pa", "pressure_p3_mean_pa"]
@@ -90,7 +94,7 @@ def run(coupler, out_dir, sets, seed):
     if os.path.exists(os.path.join(out_dir, "summary.json")):
         return out_dir
     os.makedirs(out_dir, exist_ok=True)
-    runs.run(SCENE, out_dir, BASE + sets + ["dem.specimen.seed=%d" % seed], coupler,
+    runs.run(scene(), out_dir, BASE + sets + ["dem.specimen.seed=%d" % seed], coupler,
              log=os.path.join(out_dir, "log.txt"))
     return out_dir
 
@@ -219,7 +223,7 @@ def plot(table, path):
 def main(argv):
     ap = argparse.ArgumentParser(prog="rockcut accuracy", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--out", default=os.path.join(runs.REPO, "out", "accuracy"))
+    ap.add_argument("--out", default=runs.default_out("accuracy"))
     ap.add_argument("--seeds", default="1,2,3,4")
     ap.add_argument("--plot-only", action="store_true")
     ap.add_argument("--coupler", help="the coupler to run (default build/bin/coupler)")
@@ -228,7 +232,7 @@ def main(argv):
     if not a.plot_only:
         a.coupler = runs.coupler(a.coupler)
         jobs = {}
-        for ladder, settings in ladders(scene_sizes(runs.effective_scene(SCENE, (), a.coupler))).items():
+        for ladder, settings in ladders(scene_sizes(runs.effective_scene(scene(), (), a.coupler))).items():
             for label, value, sets in settings:
                 for seed in seeds:
                     jobs[run_dir(a.out, ladder, label, seed)] = (sets, seed)

@@ -81,7 +81,7 @@ def table(rows):
 def main(argv):
     ap = argparse.ArgumentParser(prog="rockcut extreme", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--out", default=os.path.join(runs.REPO, "out", "extreme"))
+    ap.add_argument("--out", default=runs.default_out("extreme"))
     ap.add_argument("--only", default="")
     ap.add_argument("--no-halve", action="store_true")
     ap.add_argument("--coupler", help="the coupler to run (default build/bin/coupler)")

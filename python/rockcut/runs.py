@@ -5,29 +5,54 @@ the runs it starts (the commands of every verb go through here).
     proc = runs.run("cases/cutting/dry_reduced.pbtxt", "out/x", ["time.end_time_s=0.004"])
 """
 import os
+import shutil
 import subprocess
 
-from .run_data import scalar_fields
-
-# The repository this package lives in: python/rockcut/ -> the root.
+# The repository this package lives in when it runs from a checkout (python/rockcut/ -> the root);
+# IN_CHECKOUT is False for a package installed with pip.
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CASES = os.path.join(REPO, "cases")
-DEFAULT_COUPLER = os.path.join(REPO, "build", "bin", "coupler")
-
-
-def case(*parts):
-    """A path under cases/, e.g. case("cutting", "saturated_reduced.pbtxt")."""
-    return os.path.join(CASES, *parts)
+IN_CHECKOUT = (os.path.isfile(os.path.join(REPO, "CMakeLists.txt"))
+               and os.path.isdir(os.path.join(REPO, "cases")))
+BUILD_TREE_COUPLER = os.path.join(REPO, "build", "bin", "coupler")
 
 
 def coupler(path=None):
-    """The coupler to run: `path` if given, else $ROCKCUT_COUPLER, else build/bin/coupler of this
-    repository. Raises SystemExit with what to do when it is not there."""
-    path = path or os.environ.get("ROCKCUT_COUPLER") or DEFAULT_COUPLER
-    if not os.access(path, os.X_OK):
-        raise SystemExit(f"rockcut: no coupler at {path} (build it with scripts/setup, or give "
-                         "--coupler PATH)")
+    """The coupler to run: `path` if given, else $ROCKCUT_COUPLER, else build/bin/coupler of the
+    checkout this package runs from, else `coupler` on PATH (an installation: cmake --install).
+    Raises SystemExit with what to do when there is none."""
+    if not path:
+        path = os.environ.get("ROCKCUT_COUPLER")
+    if not path and IN_CHECKOUT and os.access(BUILD_TREE_COUPLER, os.X_OK):
+        path = BUILD_TREE_COUPLER
+    if not path:
+        path = shutil.which("coupler")
+    if not path or not os.access(path, os.X_OK):
+        raise SystemExit(f"rockcut: no coupler{' at ' + path if path else ''} (build it with "
+                         "scripts/setup, put an installed coupler on PATH, set ROCKCUT_COUPLER, or "
+                         "give --coupler PATH)")
     return path
+
+
+def cases_dir():
+    """The example scenes: $ROCKCUT_CASES, else cases/ of the checkout, else share/rockcut/cases
+    of the installation whose coupler runs."""
+    if os.environ.get("ROCKCUT_CASES"):
+        return os.environ["ROCKCUT_CASES"]
+    if IN_CHECKOUT:
+        return os.path.join(REPO, "cases")
+    prefix = os.path.dirname(os.path.dirname(os.path.realpath(coupler())))
+    return os.path.join(prefix, "share", "rockcut", "cases")
+
+
+def case(*parts):
+    """A path under the example scenes, e.g. case("cutting", "saturated_reduced.pbtxt")."""
+    return os.path.join(cases_dir(), *parts)
+
+
+def default_out(name):
+    """Where a verb writes by default: out/NAME of the checkout, or of the current directory for an
+    installed package."""
+    return os.path.join(REPO if IN_CHECKOUT else os.getcwd(), "out", name)
 
 
 def cpu_count():
@@ -41,6 +66,7 @@ def cpu_count():
 def dem_threads(scene, sets=(), coupler_path=None):
     """dem.threads as a run of `scene` with the overrides `sets` will see it (its effective scene;
     the default is 1)."""
+    from .run_data import scalar_fields
     threads = scalar_fields(effective_scene(scene, sets, coupler_path), "dem").get("threads")
     return int(threads) if threads else 1  # dem's own field, not specimen's
 

@@ -45,7 +45,7 @@ class ScalarFields(unittest.TestCase):
     def test_the_accuracy_study_scales_the_scene_it_runs(self):
         # The size ladder's strengths come from the effective scene, so they follow a change of
         # its rock, which lives in a base (cases/rock/default_rock_coarse.pbtxt).
-        effective = runs.effective_scene(accuracy.SCENE, (), ARGS.coupler)
+        effective = runs.effective_scene(accuracy.scene(), (), ARGS.coupler)
         with open(runs.case("rock", "default_rock_coarse.pbtxt")) as f:
             rock = scene_text.scalar_fields(f.read(), "bonds")
         self.assertEqual(scene_text.scalar_fields(effective, "bonds")["tensile_strength_n_per_m"],

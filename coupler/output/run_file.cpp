@@ -15,6 +15,7 @@
 #include "output/frame_writer.hpp"
 #include "output/h5_handle.hpp"
 #include "output/timeseries.hpp"
+#include "output/write_room.hpp"
 #include "output/xdmf_writer.hpp"
 
 namespace rockcut::coupler {
@@ -52,6 +53,21 @@ struct RunFile::Impl {
   void grow_vertex_ids(std::size_t count);
   void flush() {
     h5::check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), ctx, "cannot flush");
+  }
+  /// Throws, before anything is written, when `more_bytes` would not fit (write_room.hpp).
+  void require_room(std::uint64_t more_bytes,
+                    std::uint64_t reserve_bytes = kCloseReserveBytes) const {
+    hsize_t allocated = 0;
+    if (H5Fget_filesize(file.get(), &allocated) < 0) {
+      H5Eclear2(H5E_DEFAULT);
+      return;  // cannot tell: the write itself reports a failure
+    }
+    std::error_code ec;
+    const std::uintmax_t on_disk = std::filesystem::file_size(ctx, ec);
+    if (auto why = lacks_room(ctx, allocated, ec ? allocated : on_disk, more_bytes,
+                              reserve_bytes)) {
+      throw std::runtime_error(ctx + ": " + *why);
+    }
   }
 };
 
@@ -293,6 +309,7 @@ RunFile::~RunFile() {
 void RunFile::append_timeseries(double time_s, std::uint64_t step,
                                 const std::vector<std::pair<std::string, double>>& scalars) {
   impl_->require_open();
+  impl_->require_room(impl_->timeseries->growth_bound_bytes(scalars));
   impl_->timeseries->append(time_s, step, scalars);
 }
 
@@ -310,6 +327,7 @@ void RunFile::append_record(const std::string& table, double time_s, std::uint64
                           std::forward_as_tuple(m.file.get(), m.ctx, "/" + table))
              .first;
   }
+  m.require_room(it->second.growth_bound_bytes(values));
   it->second.append(time_s, step, values);
 }
 
@@ -321,6 +339,14 @@ void RunFile::write_frame(double time_s, std::uint64_t step, std::size_t particl
     throw std::invalid_argument(m.ctx + ": frame time is not finite");  // XDMF needs a real time
   }
   validate_frame_fields(particle_count, fields, m.ctx);
+  // The frame's values uncompressed (deflate can only shrink them, bar a few bytes per block),
+  // each dataset's header and chunk index, the group, and the vertex ids it adds.
+  std::uint64_t frame_bytes = 8192;
+  for (const FrameField& field : fields) frame_bytes += field.values.size() * sizeof(double) + 8192;
+  if (particle_count > m.vertex_id_count) {
+    frame_bytes += (particle_count - m.vertex_id_count) * sizeof(std::int32_t) + 4096;
+  }
+  m.require_room(frame_bytes);
   const std::string path = frame_group_path(m.frames);
   try {
     write_frame_group(m.file.get(), path, time_s, step, particle_count, fields, m.ctx);
@@ -345,6 +371,9 @@ void RunFile::write_frame(double time_s, std::uint64_t step, std::size_t particl
 void RunFile::set_attribute(const std::string& name, const std::string& value) {
   Impl& m = *impl_;
   m.require_open();
+  // A status attribute comes as the run stops, often for want of room: it may use most of the
+  // reserve kept for the close.
+  m.require_room(name.size() + value.size() + 4096, kCloseReserveBytes / 4);
   h5::write_string_attribute(m.file.get(), name, value, m.ctx + ": /");
   // Status attributes are often written just before a failure exit: get them to disk now.
   m.flush();

@@ -107,6 +107,18 @@ Timeseries::Column Timeseries::create_column(const std::string& name, hid_t file
   return column;
 }
 
+std::uint64_t Timeseries::growth_bound_bytes(
+    const std::vector<std::pair<std::string, double>>& scalars) const {
+  constexpr std::uint64_t kChunkBytes = kChunkRows * sizeof(double);
+  constexpr std::uint64_t kHeaderBytes = 4096;  // object header, chunk index, link in the group
+  std::uint64_t bytes = 0;
+  if (rows_ % kChunkRows == 0) bytes += (scalars_.size() + 2) * (kChunkBytes + kHeaderBytes);
+  for (const auto& [name, value] : scalars) {
+    if (index_.count(name) == 0) bytes += (rows_ / kChunkRows + 1) * kChunkBytes + kHeaderBytes;
+  }
+  return bytes;
+}
+
 void Timeseries::extend(Column& column) {
   const hsize_t new_rows = rows_ + 1;
   h5::check(H5Dset_extent(column.dataset.get(), &new_rows), context_,

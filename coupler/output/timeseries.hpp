@@ -33,6 +33,10 @@ class Timeseries {
 
   std::size_t rows() const { return static_cast<std::size_t>(rows_); }
 
+  /// The most the file can grow by appending this row: a new chunk of every column when the row
+  /// starts one, and each column first seen now (its chunks up to this row and its header).
+  std::uint64_t growth_bound_bytes(const std::vector<std::pair<std::string, double>>& scalars) const;
+
   /// Closes every dataset and the group, throwing on the first failure (all are released anyway).
   void close();
 

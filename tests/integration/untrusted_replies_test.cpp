@@ -23,6 +23,7 @@ TEST(UntrustedReplies, EachFaultIsAModuleFailureNamingTheModule) {
       {"repeat_step", "reported step 0 after"},
       {"frame_fewer_arrays", "Frame without a valid"},
       {"frame_wrong_count", "has 2 rows, expected 900"},
+      {"frame_huge_count", "2305843009213693952"},
   };
   for (const auto& [mode, expected] : faults) {
     const fs::path dir = fresh_dir("rogue_" + mode);

@@ -38,6 +38,9 @@ class Rogue final : public rockcut::wire::ModuleHandler {
       e.mutable_step_report()->set_time_s(NAN);
     } else if (mode_ == "repeat_step" && e.has_step_report()) {
       e.mutable_step_report()->set_step(0);
+    } else if (mode_ == "frame_huge_count" && e.has_frame() && e.frame().time_s() > 0) {
+      // A header that claims 2^61 rows for the values sent: count * components * 8 wraps.
+      for (auto& h : *e.mutable_arrays()) h.set_count(std::uint64_t{1} << 61);
     } else if (mode_.starts_with("frame_") && e.has_frame() && e.frame().time_s() > 0) {
       const double t = e.frame().time_s();
       std::vector<std::pair<std::string, std::uint32_t>> arrays;

@@ -57,8 +57,11 @@ namespace {
 
 // The packing file, if the scene names one, must be a regular file of bounded size in the scene's
 // directory or below it (DemConfig.scene_dir, from the coupler): a peer cannot make the module
-// read anything else. Returns the DEM's part with the file's path made canonical.
-rockcut::Dem with_allowed_packing_file(const wire::DemConfig& config) {
+// read anything else. Over tcp that directory comes from the peer, so it must lie under the
+// module's own read root (`--read-under`; empty: not bounded further). Returns the DEM's part with
+// the file's path made canonical.
+rockcut::Dem with_allowed_packing_file(const wire::DemConfig& config,
+                                       const std::filesystem::path& read_root) {
   namespace fs = std::filesystem;
   rockcut::Dem dem = config.dem();
   if (!dem.has_packing_file()) return dem;
@@ -70,6 +73,15 @@ rockcut::Dem with_allowed_packing_file(const wire::DemConfig& config) {
   std::error_code ec;
   const fs::path allowed = fs::canonical(dir, ec);
   if (ec) throw std::invalid_argument("dem.packing_file: the scene directory cannot be opened");
+  if (!read_root.empty()) {
+    const auto [end, _] = std::mismatch(read_root.begin(), read_root.end(), allowed.begin(),
+                                        allowed.end());
+    if (end != read_root.end()) {
+      throw std::invalid_argument("dem.packing_file: the scene directory " + allowed.string() +
+                                  " is outside the directory this module reads under (" +
+                                  read_root.string() + "; dem_module --read-under DIR)");
+    }
+  }
   const fs::path named(dem.packing_file().path());
   // Where it leads (symbolic links followed) is checked before whether it exists: the module
   // tells nothing about files outside the directory.
@@ -114,7 +126,7 @@ const wire::DemConfig& dem_part(const wire::Init& init) {
 void DemService::init(const wire::Init& init, wire::Message& reply) {
   const wire::DemConfig& config = dem_part(init);
   scene::validate_received(config);
-  setup_ = build_dem(with_allowed_packing_file(config));
+  setup_ = build_dem(with_allowed_packing_file(config, read_root_));
   if (setup_.system->particles().size() > scene::kMaxParticles) {
     setup_ = {};
     throw std::invalid_argument("the packing file holds more than " +

@@ -3,6 +3,7 @@
 // arrays, and step reports with the tool force, breaks and the energy ledger.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@ class DemService final : public wire::ModuleHandler {
   std::vector<std::string> models() const override { return {"dem"}; }
   void handle(const wire::Message& request, wire::Message& reply) override;
   void after_reply() override;
+  void set_read_root(const std::filesystem::path& root) override { read_root_ = root; }
 
  private:
   void init(const wire::Init& init, wire::Message& reply);
@@ -39,6 +41,7 @@ class DemService final : public wire::ModuleHandler {
   void check_guards_into(double kinetic_energy_j, wire::StepReport& report);
   DemSystem& system();
 
+  std::filesystem::path read_root_;  // empty: Init's scene directory alone bounds what is read
   DemSetup setup_;
   std::vector<std::string> send_fields_;      // per-step fields the fluid asked for
   std::vector<double> position_at_exchange_;  // for "displacement"

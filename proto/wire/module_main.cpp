@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -30,6 +31,11 @@ int module_main(int argc, char** argv, ModuleHandler& handler) {
                  "this module's key pair from it, accepting only the coupler's public key "
                  "(coupler.public). Without it the module serves without authentication: keep it "
                  "on loopback");
+  std::string read_under;
+  app.add_option("--read-under", read_under,
+                 "Over tcp: the directory under which this module reads the files a coupler's "
+                 "scene names (the DEM's packing file); default: the working directory. A peer "
+                 "cannot make the module read anything outside it");
   ServeOptions options;
   try {
     app.parse(argc, argv);
@@ -44,6 +50,19 @@ int module_main(int argc, char** argv, ModuleHandler& handler) {
       std::cerr << handler.name() << ": " << e.what() << "\n";
       return 2;
     }
+  }
+  if (endpoint.rfind("ipc://", 0) != 0) {
+    std::error_code ec;
+    const std::filesystem::path root =
+        std::filesystem::canonical(read_under.empty() ? std::filesystem::current_path(ec)
+                                                      : std::filesystem::path(read_under),
+                                   ec);
+    if (ec || !std::filesystem::is_directory(root, ec)) {
+      std::cerr << handler.name() << ": --read-under " << read_under
+                << ": not a directory this module can open\n";
+      return 2;
+    }
+    handler.set_read_root(root);
   }
   try {
     zmq::context_t context(1);

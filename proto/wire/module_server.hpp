@@ -3,6 +3,8 @@
 // are shared here so every module (built in or someone else's) behaves the same on the wire.
 #pragma once
 
+#include <filesystem>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,6 +30,10 @@ class ModuleHandler {
   /// Runs after a reply has been sent and before the next request is read: work that the coupler
   /// does not wait for (the DEM computes its contact forces here while the fluid works).
   virtual void after_reply() {}
+  /// Over tcp the peer is not the module's own child-of coupler: files a peer names (the DEM's
+  /// packing file) are read only under `root` (`--read-under`, default the module's working
+  /// directory). Not called for ipc, whose private socket only the module's coupler reaches.
+  virtual void set_read_root(const std::filesystem::path& /*root*/) {}
 };
 
 /// The largest ZeroMQ frame a module takes (ZMQ_MAXMSGSIZE): one array of a State of

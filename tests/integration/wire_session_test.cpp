@@ -59,7 +59,7 @@ TEST(WireFuzz, BadInitsAreRefusedWithAClearError) {
        }},
   };
   for (const Case& c : cases) {
-    Module dem("dem_module", "bad_init_" + c.name);
+    Module dem("dem_module", "bad_init_" + c.name, {"--read-under", scene_dir.string()});
     Client client(dem.endpoint);
     Message h = hello(wire::MODULE_KIND_DEM);
     ASSERT_TRUE(client.request(h)->envelope.has_hello_reply());
@@ -73,6 +73,41 @@ TEST(WireFuzz, BadInitsAreRefusedWithAClearError) {
     EXPECT_LT(rss_mib(dem.process.pid), 200.0) << c.name;
     shut_down(client, dem);
   }
+}
+
+// Over tcp the scene directory in Init comes from the peer: a module reads only under its own
+// --read-under directory (default: its working directory), so an Init naming "/" as the scene's
+// directory cannot make it read a file elsewhere (a 0600 file of the module's user included).
+TEST(WireFuzz, APeerCannotWidenWhatTheModuleReads) {
+  const fs::path elsewhere = fresh_dir("read_root_elsewhere");
+  std::ofstream(elsewhere / "packing.txt") << "0.001 0.001 0.0005\n";  // a valid packing
+  fs::permissions(elsewhere / "packing.txt", fs::perms::owner_read | fs::perms::owner_write);
+  for (const std::string& scene_dir : {std::string("/"), elsewhere.string()}) {
+    Module dem("dem_module", "read_root");  // working directory: its own fresh folder
+    Client client(dem.endpoint);
+    Message h = hello(wire::MODULE_KIND_DEM);
+    ASSERT_TRUE(client.request(h)->envelope.has_hello_reply());
+    rockcut::Scene scene = tiny_scene();
+    scene.mutable_dem()->mutable_packing_file()->set_path((elsewhere / "packing.txt").string());
+    Message init = init_of(scene, scene_dir);
+    const std::string error = error_of(client.request(init, 20000ms));
+    EXPECT_NE(error.find("outside the directory this module reads under"), std::string::npos)
+        << scene_dir << ": " << error;
+    EXPECT_NE(error.find("--read-under"), std::string::npos) << error;
+    shut_down(client, dem);
+  }
+  // Told to read there, the same module takes the same Init.
+  Module dem("dem_module", "read_root_granted", {"--read-under", elsewhere.string()});
+  Client client(dem.endpoint);
+  Message h = hello(wire::MODULE_KIND_DEM);
+  ASSERT_TRUE(client.request(h)->envelope.has_hello_reply());
+  rockcut::Scene scene = tiny_scene();
+  scene.mutable_dem()->mutable_packing_file()->set_path("packing.txt");
+  Message init = init_of(scene, elsewhere.string());
+  const auto reply = client.request(init, 20000ms);
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_TRUE(reply->envelope.has_init_reply()) << error_of(reply);
+  shut_down(client, dem);
 }
 
 // Each module takes only its own part of the scene: an Init with the other module's part, or with

@@ -18,7 +18,8 @@ ModuleClient::ModuleClient(zmq::context_t& context, std::string module_name,
     : name_(std::move(module_name)),
       socket_(context, zmq::socket_type::req),
       timeout_(timeout),
-      hooks_(std::move(hooks)) {
+      hooks_(std::move(hooks)),
+      endpoint_(endpoint) {
   socket_.set(zmq::sockopt::linger, 0);
   // A reply frame is bounded like a request's (module_server.hpp): a module announcing more is
   // disconnected before anything is buffered, and then named when the timeout passes.
@@ -29,8 +30,11 @@ ModuleClient::ModuleClient(zmq::context_t& context, std::string module_name,
     socket_.set(zmq::sockopt::curve_publickey, curve->public_key);
     socket_.set(zmq::sockopt::curve_secretkey, curve->secret_key);
   }
+  if (endpoint.starts_with("tcp://")) watch_ = std::make_unique<ConnectionWatch>(context, socket_);
   socket_.connect(endpoint);
 }
+
+ModuleClient::~ModuleClient() { watch_.reset(); }  // the monitor stops before the socket closes
 
 void ModuleClient::send(Message& request) {
   try {
@@ -47,17 +51,27 @@ void ModuleClient::receive(Message& reply, bool interruptible) {
   if (interruptible && hooks_.interrupted && hooks_.interrupted()) throw Interrupted();
   spin_until_readable(socket_);
   for (;;) {
-    zmq::pollitem_t item{socket_.handle(), 0, ZMQ_POLLIN, 0};
+    zmq::pollitem_t items[2] = {{socket_.handle(), 0, ZMQ_POLLIN, 0},
+                                {watch_ ? watch_->events().handle() : nullptr, 0, ZMQ_POLLIN, 0}};
+    zmq::pollitem_t& item = items[0];
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - clock::now());
     const auto slice = std::clamp(left, std::chrono::milliseconds(0), kPollSlice);
     const auto before = clock::now();
     try {
-      zmq::poll(&item, 1, slice);
+      zmq::poll(items, watch_ ? 2 : 1, slice);
     } catch (const zmq::error_t& e) {
       if (e.num() != EINTR) throw ModuleFailure(name_, std::string("poll failed: ") + e.what());
-      item.revents = 0;  // a signal arrived: look at the hooks below
+      items[0].revents = items[1].revents = 0;  // a signal arrived: look at the hooks below
     }
     if (item.revents & ZMQ_POLLIN) break;
+    // Before the first reply a drop is the handshake's (CURVE keys that do not match): the
+    // timeout below names that. Once the session runs, a drop loses the request in flight.
+    if ((items[1].revents & ZMQ_POLLIN) && watch_->take_disconnection() >= 0 && answered_) {
+      throw ModuleFailure(name_, "the connection to " + endpoint_ + " dropped while the coupler "
+                                 "waited for a reply (a TCP reset, the network or the module's "
+                                 "host gone); the module ends its session when this happens: "
+                                 "start it again and continue with `coupler resume OUT`");
+    }
     // A wait far longer than asked for is time the coupler itself was not running (Ctrl-Z, a
     // laptop asleep): it does not count against the module.
     const auto overshoot = clock::now() - before - slice;

@@ -6,12 +6,14 @@
 
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include <zmq.hpp>
 
+#include "wire/connection_watch.hpp"
 #include "wire/message.hpp"
 
 namespace rockcut::wire {
@@ -54,6 +56,7 @@ struct CurveClientKeys {
 
 class ModuleClient {
  public:
+  ~ModuleClient();
   ModuleClient(zmq::context_t& context, std::string module_name, const std::string& endpoint,
                std::chrono::milliseconds timeout, ClientHooks hooks,
                const std::optional<CurveClientKeys>& curve = std::nullopt);
@@ -74,6 +77,8 @@ class ModuleClient {
   zmq::socket_t socket_;
   std::chrono::milliseconds timeout_;
   ClientHooks hooks_;
+  std::string endpoint_;
+  std::unique_ptr<ConnectionWatch> watch_;  ///< tcp only: the connection dropping is named at once
   bool curve_ = false;     ///< a CURVE session
   bool answered_ = false;  ///< a reply has come: the CURVE handshake, if any, succeeded
 };

@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cstring>
 #include <exception>
+#include <iostream>
 #include <thread>
 
+#include "wire/connection_watch.hpp"
 #include "wire/protocol.hpp"
 #include "wire/shared_payload.hpp"
 #include "wire/spin_wait.hpp"
@@ -113,6 +115,11 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
     socket.set(zmq::sockopt::zap_domain, "rockcut");
   }
   socket.bind(endpoint);
+  // Over tcp a session ends when its coupler's connection drops: ZeroMQ would reconnect it as
+  // another client, which the session refuses, so the module would stay up serving no one.
+  std::unique_ptr<ConnectionWatch> watch;
+  if (endpoint.starts_with("tcp://")) watch = std::make_unique<ConnectionWatch>(context, socket);
+  int owner_fd = -1;  // the connection the session's Hello came in on
   const unsigned version = options.protocol_version ? options.protocol_version : kProtocolVersion;
   // Shared-memory segments are named by local peers only (wire/shared_payload.hpp).
   const bool shared_memory_allowed = endpoint.starts_with("ipc://");
@@ -130,6 +137,25 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
   const std::string module = handler.name();
   for (;;) {
     spin_until_readable(socket);
+    if (watch) {
+      zmq::pollitem_t items[2] = {{socket.handle(), 0, ZMQ_POLLIN, 0},
+                                  {watch->events().handle(), 0, ZMQ_POLLIN, 0}};
+      try {
+        zmq::poll(items, 2, std::chrono::milliseconds(-1));
+      } catch (const zmq::error_t& e) {
+        if (e.num() == EINTR) continue;
+        throw;
+      }
+      if (items[1].revents & ZMQ_POLLIN) {
+        const int dropped = watch->take_disconnection();
+        if (owner_fd >= 0 && dropped == owner_fd) {
+          std::cerr << module << ": the connection of the coupler that owned the session dropped "
+                       "(a TCP reset or its host gone); session ended\n";
+          return 3;
+        }
+      }
+      if (!(items[0].revents & ZMQ_POLLIN)) continue;
+    }
     zmq::message_t peer_id;
     receive_part(socket, peer_id);
     if (!peer_id.more()) continue;
@@ -141,6 +167,7 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
     }
     zmq::message_t head;
     receive_part(socket, head);
+    const int head_fd = watch ? source_fd(head) : -1;
     const auto start = clock::now();
     reply.clear();
     const std::string peer = peer_id.to_string();
@@ -172,6 +199,7 @@ int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& h
                   std::string(kind_name(handler.kind()));
       } else {
         owner = peer;
+        owner_fd = head_fd;
         fill_hello_reply(handler, version, *reply.envelope.mutable_hello_reply());
       }
     } else if (owner.empty()) {

@@ -62,6 +62,9 @@ struct ServeOptions {
 /// with an Error and otherwise ignored. A malformed message (frame 0 not an Envelope, array
 /// frames other than announced, a shared-memory segment named over tcp) is answered with an
 /// Error too; so are a second Hello or Init. The module keeps serving its coupler in all cases.
+/// Over tcp the session ends, returning 3, when the connection its Hello came in on drops (a TCP
+/// reset, the coupler's host gone): ZeroMQ would reconnect the coupler as another client, which
+/// the session refuses.
 int serve(zmq::context_t& context, const std::string& endpoint, ModuleHandler& handler,
           const ServeOptions& options = {});
 

@@ -1,4 +1,4 @@
-"""Work-precision study of coupled cutting (docs/accuracy.md): error against wall time.
+"""Work-precision study of coupled cutting (docs/record/accuracy.md): error against wall time.
 
   rockcut accuracy [--jobs N] [--out DIR] [--seeds 1,2,3,4] [--plot-only] [--coupler PATH]
 

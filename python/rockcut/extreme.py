@@ -5,7 +5,7 @@ refused at start-up, or was stopped by a runtime guard.
 
 Each scene runs as given and, unless --no-halve, again with the DEM step halved
 (--set time.dt_safety=0.1, the default being 0.2), so that the table shows whether the results
-converge when the step halves. Writes DIR/extreme.md (a markdown table, what docs/accuracy.md
+converge when the step halves. Writes DIR/extreme.md (a markdown table, what docs/record/accuracy.md
 quotes) and DIR/extreme.csv, one row per run, and prints the table.
 
 Outcome of a run:

@@ -1,5 +1,5 @@
-"""Paired differences over specimen seeds in a rockcut sweep CSV (docs/accuracy.md, "The coupling
-interval over sixteen seeds").
+"""Paired differences over specimen seeds in a rockcut sweep CSV (docs/record/accuracy.md,
+"The coupling interval over sixteen seeds").
 
   rockcut paired SWEEP_CSV [--key force_horizontal_mean_n_per_m] [--scale 1e-3]
 

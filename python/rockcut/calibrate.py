@@ -22,7 +22,7 @@ import math
 import os
 import shlex
 
-from . import runs
+from . import campaign, runs
 from .run_data import read_summary
 from .stats import mean_and_error
 
@@ -116,10 +116,7 @@ def main(arguments):
                          "split_detected": b.get("split_detected", False),
                          "wall_time_s": u["wall_time_s"] + b["wall_time_s"],
                          "overrides": opts})
-    with open(os.path.join(args.out, "calibration_runs.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    campaign.write_rows(os.path.join(args.out, "calibration_runs.csv"), rows)
 
     summary = os.path.join(args.out, "calibration.csv")
     with open(summary, "w", newline="") as f:

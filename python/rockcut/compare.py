@@ -32,9 +32,10 @@ import sys
 
 import numpy as np
 
+from .campaign import collect, seeds_in, sorted_values, values_in
 from .figures import plt, set_x_scale
-from .sweep import collect, seeds_in, sorted_values, values_in
-from .sweep_figures import Sweep, plot_key, shear_fraction
+from .sweep_figures import plot_key
+from .sweep_table import Sweep, shear_fraction
 
 
 DEPTH = "water_depth_m"

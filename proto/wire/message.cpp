@@ -74,6 +74,7 @@ std::span<const double> Message::array(std::string_view name, std::uint32_t comp
                           " doubles");
     }
     const std::size_t n = doubles;
+    if (n == 0) return {};  // an empty frame's data() may be null or unaligned: nothing to copy
     const void* data = frame.data();
     if (reinterpret_cast<std::uintptr_t>(data) % alignof(double) == 0) {
       return {static_cast<const double*>(data), n};

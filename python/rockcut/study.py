@@ -1,4 +1,4 @@
-"""Error against run time of the SP pore-pressure models (issue 4; DESIGN section 7).
+"""Error against run time of the SP pore-pressure models (DESIGN section 7).
 
 Runs ladders of resolutions of the fluid verification scenes with both models through
 `coupler run --set ...`, and writes:

@@ -31,8 +31,8 @@
 #include <string>
 #include <vector>
 
-#include "sp/explicit_model.hpp"
-#include "sp/implicit_model.hpp"
+#include "models/explicit_model.hpp"
+#include "models/implicit_model.hpp"
 #include "sp/step_operator.hpp"
 
 namespace {

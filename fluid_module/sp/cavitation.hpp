@@ -2,8 +2,8 @@
 // pressure p_min. A particle at p_min is held there, and only increases of its pressure pass:
 //   p_i < p_min  =>  p_i = p_min  and  dp_i/dt = max(dp_i/dt, 0).
 // The one statement of the clamp, shared by the explicit model (forward Euler,
-// sp/explicit_model.cpp), the implicit model's active set (sp/implicit_system.cpp) and the count
-// of cavitated particles (sp/pore_pressure_model.cpp).
+// models/explicit_model.cpp), the implicit model's active set (sp/implicit_system.cpp) and the count
+// of cavitated particles (models/pore_pressure_model.cpp).
 #pragma once
 
 #include <algorithm>

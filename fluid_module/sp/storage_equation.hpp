@@ -2,7 +2,7 @@
 // p = M (zeta - alpha eps_v) (eq. 13) and Darcy's flux u = -(kappa / mu) grad p (eq. 12),
 //   dp/dt = D lap p - alpha M d(eps_v)/dt,   D = M kappa / mu   (eq. 14, uniform kappa),
 // where lap is the SP Laplacian of eq. 20 (sp/operators.hpp) and d(eps_v)/dt the corrected
-// divergence of eq. 17. The explicit model advances it by forward Euler (sp/explicit_model.cpp),
+// divergence of eq. 17. The explicit model advances it by forward Euler (models/explicit_model.cpp),
 // the implicit model by backward Euler (sp/implicit_system.cpp).
 #pragma once
 

@@ -9,7 +9,7 @@ from . import crop_packing, runs
 ROOT = runs.REPO
 
 D = 2e9 * 1e-14 / 1e-3  # Table 1: M kappa / mu [m^2/s]
-C = 0.05                # explicit stability constant (fluid_module/sp/explicit_model.hpp)
+C = 0.05                # explicit stability constant (fluid_module/models/explicit_model.hpp)
 MODELS = ("explicit", "implicit")
 
 

@@ -11,8 +11,8 @@
 
 #include <span>
 
-#include "sp/explicit_model.hpp"
-#include "sp/implicit_model.hpp"
+#include "models/explicit_model.hpp"
+#include "models/implicit_model.hpp"
 
 namespace rockcut::fluid::test {
 

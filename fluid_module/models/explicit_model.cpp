@@ -1,8 +1,9 @@
-#include "sp/explicit_model.hpp"
+#include "models/explicit_model.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
+#include "models/registry.hpp"
 #include "sp/cavitation.hpp"
 #include "sp/format.hpp"
 #include "sp/operators.hpp"
@@ -52,3 +53,12 @@ void ExplicitModel::advance(double dt_s) {
 }
 
 }  // namespace rockcut::fluid::sp
+
+namespace rockcut::fluid {
+namespace {
+// Registered by name at static initialisation (models/registry.hpp); the archive is linked whole.
+const bool registered = register_model("explicit", [](const wire::FluidConfig& config) {
+  return std::make_unique<sp::ExplicitModel>(sp::sp_params_from_config(config));
+});
+}  // namespace
+}  // namespace rockcut::fluid

@@ -63,7 +63,7 @@ class PorePressureModel : public FluidModel {
   std::vector<StabilityLimit> limits() const final;
   bool probe(std::span<const double> position, const ProbeBox& box, double& mean_pa,
              std::size_t& count) const override;
-  /// Checkpoint and restart (sp/pore_pressure_state.cpp).
+  /// Checkpoint and restart (models/pore_pressure_state.cpp).
   void save_state(state::StateArchive& archive) const final;
   void load_state(const state::StateArchive& archive) final;
 
@@ -92,7 +92,7 @@ class PorePressureModel : public FluidModel {
   /// particles at p_hydro and clamping by eq. 22. Called once per step with dt > 0; with
   /// laplacian_in_step_ set, laplacian_ then holds the eq. 20 Laplacian of pressure_.
   virtual void advance(double dt_s) = 0;
-  /// The model's own state between steps, beside the common one (sp/pore_pressure_state.cpp).
+  /// The model's own state between steps, beside the common one (models/pore_pressure_state.cpp).
   virtual void save_model_state(state::StateArchive&) const {}
   virtual void load_model_state(const state::StateArchive&) {}
   /// Model-specific scalars appended to the common ones.

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "sp/implicit_system.hpp"
-#include "sp/pore_pressure_model.hpp"
+#include "models/pore_pressure_model.hpp"
 
 namespace rockcut::fluid::sp {
 

@@ -1,4 +1,4 @@
-#include "sp/pore_pressure_model.hpp"
+#include "models/pore_pressure_model.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 // stays 13 % below it.
 #pragma once
 
-#include "sp/pore_pressure_model.hpp"
+#include "models/pore_pressure_model.hpp"
 
 namespace rockcut::fluid::sp {
 

@@ -4,8 +4,8 @@
 // positions, the geometry by a full update on geo.position (which a local refresh reproduces bit
 // for bit, sp/geometry.hpp) and the step's coefficients from the geometry. The boundary is saved,
 // since it was classified against the walls of its own time.
-#include "sp/implicit_model.hpp"
-#include "sp/pore_pressure_model.hpp"
+#include "models/implicit_model.hpp"
+#include "models/pore_pressure_model.hpp"
 
 namespace rockcut::fluid::sp {
 

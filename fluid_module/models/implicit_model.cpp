@@ -1,5 +1,6 @@
-#include "sp/implicit_model.hpp"
+#include "models/implicit_model.hpp"
 
+#include "models/registry.hpp"
 #include "sp/format.hpp"
 
 namespace rockcut::fluid::sp {
@@ -27,3 +28,12 @@ void ImplicitModel::add_scalars(std::vector<std::pair<std::string, double>>& out
 }
 
 }  // namespace rockcut::fluid::sp
+
+namespace rockcut::fluid {
+namespace {
+// Registered by name at static initialisation (models/registry.hpp); the archive is linked whole.
+const bool registered = register_model("implicit", [](const wire::FluidConfig& config) {
+  return std::make_unique<sp::ImplicitModel>(sp::sp_params_from_config(config));
+});
+}  // namespace
+}  // namespace rockcut::fluid

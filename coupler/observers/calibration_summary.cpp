@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace rockcut::coupler {
@@ -130,6 +131,14 @@ void CalibrationSummary::load_state(const state::StateArchive& a) {
   for (std::size_t k = 0; k + 3 < samples.size(); k += 4) {
     samples_.push_back({samples[k], samples[k + 1], samples[k + 2], samples[k + 3]});
   }
+}
+
+std::string CalibrationSummary::end_reason(const RunClock& clock) const {
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "the Brazilian disc split at t = %.6g s: test ended (loading_test.stop_at_split)",
+                clock.time_s);
+  return line;
 }
 
 }  // namespace rockcut::coupler

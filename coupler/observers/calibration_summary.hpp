@@ -27,6 +27,7 @@ class CalibrationSummary : public RunObserver {
     return true;
   }
   bool ends_run() const override { return test_over(); }
+  std::string end_reason(const RunClock& clock) const override;
   /// Checkpoint: the samples and the split detector.
   void save_state(state::StateArchive& a) const override;
   void load_state(const state::StateArchive& a) override;

@@ -34,6 +34,8 @@ class RunObserver {
   virtual void exchanged(const RunClock& /*clock*/) {}
   /// True when the run should end now (a Brazilian disc has split).
   virtual bool ends_run() const { return false; }
+  /// Why it ended the run, one line for the terminal (ends_run() true); the run loop knows no scene.
+  virtual std::string end_reason(const RunClock& /*clock*/) const { return {}; }
   /// The end of the run (`completed`: it reached its end time): summary fields and report lines.
   /// Returns false when a check of the run failed (the run exits with kExitVerificationFailed).
   virtual bool finish(const RunClock& /*clock*/, Summary& /*summary*/, bool /*completed*/) {
@@ -61,6 +63,13 @@ class RunObservers {
       if (o->ends_run()) return true;
     }
     return false;
+  }
+  /// The reason of the first observer that ends the run (empty if none does).
+  std::string end_reason(const RunClock& clock) const {
+    for (const auto& o : list_) {
+      if (o->ends_run()) return o->end_reason(clock);
+    }
+    return {};
   }
   std::size_t size() const { return list_.size(); }
   /// The first observer of type T, or nullptr.

@@ -148,10 +148,7 @@ void RunSession::loop() {
   end_checkpoint();
   set_graceful_stop(false);
   recorder_.record(clock_, true);
-  if (observers_.ends_run()) {
-    std::printf("\nthe Brazilian disc split at t = %.6g s: test ended (loading_test.stop_at_split)\n",
-                clock_.time_s);
-  }
+  if (observers_.ends_run()) std::printf("\n%s\n", observers_.end_reason(clock_).c_str());
 }
 
 }  // namespace rockcut::coupler

@@ -12,7 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "output/h5_handle.hpp"
-#include "run/run_session.hpp"
+#include "session/run_session.hpp"
 #include "scene/scene_loader.hpp"
 #include "wire/curve_keys.hpp"
 #include "wire/module_main.hpp"

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "output/text_lines.hpp"
+#include "run/text_lines.hpp"
 
 namespace rockcut::coupler {
 

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "output/text_lines.hpp"
+#include "run/text_lines.hpp"
 #include "state/state_archive.hpp"
 
 namespace rockcut::coupler {

@@ -12,7 +12,7 @@
 
 #include <zmq.hpp>
 
-#include "output/checkpoint_file.hpp"
+#include "run/checkpoint_values.hpp"
 #include "run/module_link.hpp"
 #include "run/run_options.hpp"
 #include "run/time_plan.hpp"

@@ -35,7 +35,7 @@ const std::vector<std::string> kSmallCut = {
 
 // Bad input exits 2 and starts no run, whoever finds it: the scene loader (schema ranges) before any
 // process starts, or the DEM when it answers Init with an error (a combination the schema cannot
-// check); the coupler then reports "refused by dem_module" (coupler/run/run_session.cpp).
+// check); the coupler then reports "refused by dem_module" (coupler/session/run_session.cpp).
 constexpr int kExitBadInput = 2;
 
 // Runs the small cut with extra arguments into a fresh directory.

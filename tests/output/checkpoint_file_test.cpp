@@ -1,4 +1,4 @@
-// The checkpoint file (coupler/output/checkpoint_file.hpp): what is written is read back bit for
+// The checkpoint file (coupler/checkpoint/checkpoint_file.hpp): what is written is read back bit for
 // bit, any change to its contents is caught by the checksum, and pruning keeps the newest.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cstring>
 #include <iterator>
 
-#include "output/checkpoint_file.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 
 namespace rockcut::coupler {
 namespace {

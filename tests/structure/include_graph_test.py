@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """The include graph keeps the house's rules: the three modules (dem_module, fluid_module, coupler)
 never include one another, only the shared layer (proto/: scene, wire, state and the generated
-rockcut/*.pb.h); and inside the fluid module the SP operators (sp/) include nothing of the models
-(models/), which build on them.
+rockcut/*.pb.h); inside the fluid module the SP operators (sp/) include nothing of the models
+(models/), which build on them; and the coupler's floors include only their own and those below:
+bottom run/ and process/, middle schemes/, observers/, cutting_models/ and output/, top
+checkpoint/, session/ and cli/.
 
 Every quoted #include of a module's sources is resolved as its compiler does: against the module's
 own folder, then the shared layer. One that resolves only in another module, or not at all, fails.
@@ -16,8 +18,15 @@ import unittest
 
 MODULES = ("dem_module", "fluid_module", "coupler")
 SHARED = "proto"
-# Folders whose files may not include the named folders of the same module.
+# Folders whose files may not include the named folders of the same module: the fluid's operators
+# nothing of its models; the coupler's floors nothing of a floor above (coupler/CMakeLists.txt).
+COUPLER_MIDDLE = ("schemes", "observers", "cutting_models", "output")
+COUPLER_TOP = ("checkpoint", "session", "cli")
 LAYERS = {("fluid_module", "sp"): ("models",)}
+for bottom in ("run", "process"):
+    LAYERS[("coupler", bottom)] = COUPLER_MIDDLE + COUPLER_TOP
+for middle in COUPLER_MIDDLE:
+    LAYERS[("coupler", middle)] = COUPLER_TOP
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 ROOT = None
 
@@ -87,12 +96,15 @@ class IncludeGraph(unittest.TestCase):
             write("fluid_module/sp/kernel.hpp")
             write("fluid_module/models/model.hpp", '#include "sp/kernel.hpp"\n')
             write("coupler/run/clock.hpp")
+            write("coupler/session/loop.hpp", '#include "run/clock.hpp"\n')
             self.assertEqual(violations(tree), [])
             write("coupler/run/bad.cpp", '#include "core/bonds.hpp"\n')
             write("fluid_module/sp/bad.cpp", '#include "models/model.hpp"\n')
             write("dem_module/core/gone.cpp", '#include "nowhere/x.hpp"\n')
+            write("coupler/run/up.cpp", '#include "session/loop.hpp"\n')
             found = violations(tree)
-            self.assertEqual(len(found), 3, found)
+            self.assertEqual(len(found), 4, found)
+            self.assertTrue(any("run/ may not include session/" in v for v in found), found)
             self.assertTrue(any("is dem_module's" in v for v in found), found)
             self.assertTrue(any("sp/ may not include models/" in v for v in found), found)
             self.assertTrue(any("resolves nowhere" in v for v in found), found)

@@ -1,12 +1,12 @@
 // The assembled parts of one run, by reference, for the pieces that act on all of them: the
-// checkpoints (run/run_checkpoints.hpp) and the start and end reports (run/run_report.hpp).
+// checkpoints (checkpoint/checkpoint_writer.hpp) and the start and end reports (session/run_report.hpp).
 #pragma once
 
 #include "observers/run_observer.hpp"
 #include "run/run_clock.hpp"
 #include "run/run_modules.hpp"
 #include "run/run_options.hpp"
-#include "run/run_recorder.hpp"
+#include "session/run_recorder.hpp"
 #include "run/time_plan.hpp"
 #include "schemes/coupling_scheme.hpp"
 #include "scene/scene_loader.hpp"

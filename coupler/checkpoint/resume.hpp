@@ -1,12 +1,12 @@
 // Choosing the checkpoint a run resumes from, and what may change when it does
-// (run_checkpoint.cpp). Writing checkpoints during a run: run/run_checkpoints.hpp.
+// (resume.cpp). Writing checkpoints during a run: checkpoint/checkpoint_writer.hpp.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "output/checkpoint_file.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 #include "output/run_file.hpp"
 #include "run/run_options.hpp"
 #include "scene/scene_loader.hpp"

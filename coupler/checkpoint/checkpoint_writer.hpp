@@ -2,11 +2,11 @@
 // output.checkpoint_interval_s of simulated time, every --checkpoint-every seconds of wall time, on
 // SIGUSR1, on a stop (SIGTERM, SIGINT) and at the end; and the hand-back of one to a resumed run.
 // Each module saves its own state (SaveState); the coupler adds its clock, what it has recorded and
-// its observers' sums, into one file (output/checkpoint_file.hpp).
+// its observers' sums, into one file (checkpoint/checkpoint_file.hpp).
 #pragma once
 
-#include "output/checkpoint_file.hpp"
-#include "run/run_parts.hpp"
+#include "checkpoint/checkpoint_file.hpp"
+#include "session/run_parts.hpp"
 
 namespace rockcut::coupler {
 

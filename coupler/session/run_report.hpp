@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "output/summary_json.hpp"
-#include "run/run_parts.hpp"
+#include "session/run_parts.hpp"
 
 namespace rockcut::coupler {
 

@@ -1,6 +1,6 @@
 // Checkpoint and restart of a run (README "Checkpoint and restart"). The coupler asks each module
 // for its state (SaveState), adds its own clock, accumulators and how far run.h5 has been written,
-// and stores all of it in one checkpoint file (output/checkpoint_file.hpp). A resumed run starts
+// and stores all of it in one checkpoint file (checkpoint/checkpoint_file.hpp). A resumed run starts
 // the modules from the scene as usual, hands them their states back (LoadState), cuts run.h5 back
 // to the checkpoint and continues: the same arithmetic in the same order, so the same bits.
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <google/protobuf/util/message_differencer.h>
 
 #include "output/run_file.hpp"
-#include "output/text_lines.hpp"
-#include "run/run_checkpoint.hpp"
+#include "run/text_lines.hpp"
+#include "checkpoint/resume.hpp"
 #include "run/signals.hpp"
 #include "wire/protocol.hpp"
 #include "wire/state_message.hpp"

@@ -12,27 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "state/state_archive.hpp"
+#include "run/checkpoint_values.hpp"
 
 namespace rockcut::coupler {
-
-/// A checkpoint that cannot be used; what() is the reason (the caller names the file).
-class CheckpointError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-struct Checkpoint {
-  std::string rockcut_version;
-  std::uint32_t protocol_version = 0;
-  std::string scene_text;   ///< the effective scene (after overrides), as in run.h5
-  std::string scene_path;   ///< where the scene was read from
-  std::vector<std::string> overrides;  ///< the --set arguments of the run
-  std::uint64_t step = 0;
-  double time_s = 0.0;
-  /// "coupler", "dem", "fluid": each part's state.
-  std::map<std::string, state::StateArchive> parts;
-};
 
 /// The file name of the checkpoint at `step` (sorting by name sorts by step).
 std::string checkpoint_file_name(std::uint64_t step);

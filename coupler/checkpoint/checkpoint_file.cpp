@@ -1,4 +1,4 @@
-#include "output/checkpoint_file.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "output/h5_handle.hpp"
-#include "output/text_lines.hpp"
+#include "run/text_lines.hpp"
 
 namespace rockcut::coupler {
 

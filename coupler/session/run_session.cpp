@@ -1,12 +1,12 @@
-#include "run/run_session.hpp"
+#include "session/run_session.hpp"
 
 #include <cstdio>
 #include <iostream>
 
 #include "observers/run_observers.hpp"
 #include "run/ipc_directory.hpp"
-#include "run/run_checkpoint.hpp"
-#include "run/run_report.hpp"
+#include "checkpoint/resume.hpp"
+#include "session/run_report.hpp"
 #include "run/signals.hpp"
 #include "wire/protocol.hpp"
 

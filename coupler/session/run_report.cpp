@@ -1,4 +1,4 @@
-#include "run/run_report.hpp"
+#include "session/run_report.hpp"
 
 #include <cstdio>
 #include <iostream>

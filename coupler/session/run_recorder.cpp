@@ -1,10 +1,10 @@
-#include "run/run_recorder.hpp"
+#include "session/run_recorder.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "run/reply_checks.hpp"
-#include "run/run_checkpoint.hpp"
+#include "checkpoint/resume.hpp"
 #include "wire/protocol.hpp"
 
 namespace rockcut::coupler {

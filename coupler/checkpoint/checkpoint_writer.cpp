@@ -1,4 +1,4 @@
-#include "run/run_checkpoints.hpp"
+#include "checkpoint/checkpoint_writer.hpp"
 
 #include <chrono>
 #include <cmath>

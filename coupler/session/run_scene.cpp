@@ -3,8 +3,8 @@
 #include <iostream>
 
 #include "run/out_dir_lock.hpp"
-#include "run/run_checkpoint.hpp"
-#include "run/run_session.hpp"
+#include "checkpoint/resume.hpp"
+#include "session/run_session.hpp"
 #include "run/signals.hpp"
 
 namespace rockcut::coupler {

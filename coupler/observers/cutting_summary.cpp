@@ -78,6 +78,11 @@ void CuttingSummary::write(Summary& summary) const {
   summary.set("specific_energy_mpa", fh / cut_depth_m_ * 1e-6);
   summary.set("tool_contact_fraction",
               samples_ ? static_cast<double>(in_contact_) / static_cast<double>(samples_) : 0.0);
+  // While cutting: a sample without contact has a force of exactly 0, so the sums over all samples
+  // are the sums over the contact samples.
+  const double contact = static_cast<double>(in_contact_);
+  summary.set("force_horizontal_mean_in_contact_n_per_m", in_contact_ ? sum_x_ / contact : 0.0);
+  summary.set("force_vertical_mean_in_contact_n_per_m", in_contact_ ? sum_y_ / contact : 0.0);
   summary.set("steady_samples", static_cast<std::int64_t>(samples_));
   summary.set("steady_after_m", steady_after_m_);
   for (const char* key : {"breaks_tensile", "breaks_shear", "chips"}) {

@@ -10,7 +10,9 @@
 // Under a damping that lets chips fly (dem.damping "viscous") the tool touches rock only part of
 // the time: force_horizontal_peak_n_per_m is the largest resisting force of the steady part (what
 // sizes a tooth) and tool_contact_fraction the share of its samples in which the tool touched any
-// disc (force not exactly 0).
+// disc (force not exactly 0), and force_{horizontal,vertical}_mean_in_contact_n_per_m the means
+// over those samples only: the force while the tool cuts, which the mean over all samples dilutes
+// by the time it spends in the air between chips.
 // The engineer's figures of the same steady part: force_horizontal_p95_n_per_m, the 95th percentile
 // of the resisting force over the steady samples (linear interpolation between the order
 // statistics at rank 0.95 (n - 1), numpy's default); force_horizontal_std_n_per_m, their standard

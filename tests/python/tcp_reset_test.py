@@ -102,8 +102,13 @@ class TcpReset(unittest.TestCase):
                  # (20 s or more), so the reset comes well before the end.
                  "--set", "dem.tool.velocity_m_s=0.2", "--set", "time.end_time_s=0.35"],
                 cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-            # Under way: the handshake and Init passed, then some seconds of stepping.
-            time.sleep(3.0)
+            # Under way: the handshake and Init passed (their messages carry the particles'
+            # arrays, tens of kB), then a second of stepping. Waits on progress, not on the clock,
+            # so a busy machine only makes it slower.
+            deadline = time.monotonic() + 120
+            while relay.bytes < 20000 and coupler.poll() is None and time.monotonic() < deadline:
+                time.sleep(0.05)
+            time.sleep(1.0)
             self.assertGreater(relay.bytes, 0)
             self.assertIsNone(coupler.poll(), "the run ended before the reset")
             reset_at = time.monotonic()

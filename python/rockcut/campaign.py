@@ -20,7 +20,7 @@ from . import slurm
 # through this module by the verbs.
 from .campaign_run import (LOG, RECORD, clear_run, earlier_run, read_record,  # noqa: F401
                            slurm_run_of, state, write_record)
-from .run_data import read_summary
+from .summary_file import read_summary
 
 PLAN = "sweep_plan.json"     # in the sweep folder: the runs a sweep will make
 TABLE = "sweep.csv"          # one row per run

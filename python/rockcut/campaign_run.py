@@ -8,7 +8,7 @@ import re
 import shutil
 
 from . import slurm
-from .run_data import read_summary
+from .summary_file import read_summary
 
 RECORD = "sweep_run.json"    # in a run's folder: the command that made it and how it ended
 LOG = "log.txt"              # in a run's folder: the command line and the coupler's output

@@ -16,6 +16,8 @@ import re
 
 os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")  # the run may still be writing run.h5
 
+from .summary_file import read_summary  # noqa: E402,F401  (re-exported)
+
 import h5py  # noqa: E402  (Debian's python3-h5py)
 import numpy as np  # noqa: E402
 
@@ -23,15 +25,6 @@ import numpy as np  # noqa: E402
 def h5_path(path):
     """run.h5 of a run folder, or `path` itself when it names the file."""
     return os.path.join(path, "run.h5") if os.path.isdir(path) else path
-
-
-def read_summary(path):
-    """summary.json of a run folder as a dict, or None while the run has none (or it is unreadable)."""
-    try:
-        with open(os.path.join(path, "summary.json")) as f:
-            return json.load(f)
-    except (OSError, ValueError):
-        return None
 
 
 def read_timeseries(f):

@@ -83,6 +83,26 @@ class InstalledPackage(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("usage: rockcut VERB", r.stdout)
 
+    def test_status_needs_neither_h5py_nor_numpy_nor_matplotlib(self):
+        # `rockcut status` on a cluster's login node: a sweep folder of one finished and one
+        # pending run, read with the standard library only.
+        sweep = os.path.join(self.work, "sweep")
+        done = os.path.join(sweep, "water_depth_m=0", "seed=1")
+        os.makedirs(done, exist_ok=True)
+        os.makedirs(os.path.join(sweep, "water_depth_m=10", "seed=1"), exist_ok=True)
+        with open(os.path.join(sweep, "sweep_plan.json"), "w") as f:
+            json.dump({"case": "cases/cutting/dry_reduced.pbtxt", "name": "water_depth_m",
+                       "values": ["0", "10"], "seeds": [1], "set": [], "scheduler": "local"}, f)
+        with open(os.path.join(done, "summary.json"), "w") as f:
+            json.dump({"status": "completed", "wall_time_s": 1.5}, f)
+        code = ("import sys\n"
+                "for m in ('h5py', 'numpy', 'matplotlib'): sys.modules[m] = None\n"
+                "from rockcut.__main__ import main\n"
+                "sys.exit(main(['status', sys.argv[1]]))\n")
+        r = self.run_in_venv([os.path.join(self.bin, "python"), "-c", code, sweep])
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("1 done", r.stdout)
+
     def test_finds_the_coupler_on_path_and_reads_a_run(self):
         coupler_dir = os.path.dirname(os.path.abspath(ARGS.coupler))
         path = coupler_dir + os.pathsep + os.environ.get("PATH", "")

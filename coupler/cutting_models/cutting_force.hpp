@@ -11,6 +11,8 @@
 // normal to the free surface, positive when the face leans back: alpha_r = 90 deg - alpha.
 #pragma once
 
+#include <numbers>
+
 namespace rockcut::coupler::cutting_models {
 
 struct CuttingForce {
@@ -18,7 +20,7 @@ struct CuttingForce {
   double vertical_up_n_per_m = 0.0;
 };
 
-inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kPi = std::numbers::pi;
 inline double radians(double deg) { return deg * kPi / 180.0; }
 inline double degrees(double rad) { return rad * 180.0 / kPi; }
 /// alpha_r = 90 deg - alpha (Miedema 2014, section 8.3: the rake angle of Evans and Nishimatsu).

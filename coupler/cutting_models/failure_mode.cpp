@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cutting_models/cutting_force.hpp"
+#include "cutting_models/merchant_flow_type.hpp"
 
 namespace rockcut::coupler::cutting_models {
 
@@ -11,9 +12,11 @@ FailureMode miedema_failure_mode(double cohesion_pa, double friction_angle_deg,
                                  double blade_angle_deg) {
   const double a = radians(blade_angle_deg), phi = radians(friction_angle_deg),
                delta = radians(tool_friction_angle_deg);
-  const double beta = 0.5 * (kPi - a - delta - phi);  // merchant_flow_type.hpp
+  const double beta_deg =
+      merchant_shear_angle_deg(friction_angle_deg, tool_friction_angle_deg, blade_angle_deg);
+  const double beta = radians(beta_deg);
   FailureMode m;
-  if (a + delta + phi >= kPi) {
+  if (std::isnan(beta_deg)) {
     m.shear_plane_normal_stress_pa = m.least_principal_stress_pa = std::nan("");
     m.mode = "none";
     return m;

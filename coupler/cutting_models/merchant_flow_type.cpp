@@ -9,18 +9,22 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }
 
+double merchant_shear_angle_deg(double friction_angle_deg, double tool_friction_angle_deg,
+                                double blade_angle_deg) {
+  const double rest_deg = 180.0 - blade_angle_deg - tool_friction_angle_deg - friction_angle_deg;
+  return rest_deg > 0.0 ? 0.5 * rest_deg : kNaN;
+}
+
 FlowTypeForce merchant_flow_type(double cohesion_pa, double friction_angle_deg,
                                  double tool_friction_angle_deg, double blade_angle_deg,
                                  double cut_depth_m) {
-  const double a = radians(blade_angle_deg), phi = radians(friction_angle_deg),
-               delta = radians(tool_friction_angle_deg);
   FlowTypeForce r;
-  if (a + delta + phi >= kPi) {
+  r.shear_angle_deg =
+      merchant_shear_angle_deg(friction_angle_deg, tool_friction_angle_deg, blade_angle_deg);
+  if (std::isnan(r.shear_angle_deg)) {
     r.force = {kNaN, kNaN};
-    r.shear_angle_deg = kNaN;
     return r;
   }
-  r.shear_angle_deg = degrees(0.5 * (kPi - a - delta - phi));
   r.force = flow_type_at_shear_angle(cohesion_pa, friction_angle_deg, tool_friction_angle_deg,
                                      blade_angle_deg, cut_depth_m, 0.0, 0.0, r.shear_angle_deg);
   return r;

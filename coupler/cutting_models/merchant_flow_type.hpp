@@ -34,6 +34,11 @@ struct FlowTypeForce {
   double shear_angle_deg = 0.0;  ///< beta, the shear plane against the cutting direction
 };
 
+/// The minimum-force shear angle without pore under-pressure, beta = (180 - alpha - delta - phi) / 2
+/// [deg]; NaN where alpha + delta + phi >= 180 deg (no shear plane).
+double merchant_shear_angle_deg(double friction_angle_deg, double tool_friction_angle_deg,
+                                double blade_angle_deg);
+
 /// Dry / drained flow type at the minimum-force shear angle (closed form, dp = 0).
 FlowTypeForce merchant_flow_type(double cohesion_pa, double friction_angle_deg,
                                  double tool_friction_angle_deg, double blade_angle_deg,

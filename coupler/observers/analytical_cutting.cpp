@@ -7,6 +7,7 @@
 #include "cutting_models/hyperbaric_flow_type.hpp"
 #include "cutting_models/merchant_flow_type.hpp"
 #include "cutting_models/nishimatsu_shear_plane.hpp"
+#include "scene/tool_geometry.hpp"
 
 namespace rockcut::coupler {
 
@@ -22,8 +23,7 @@ AnalyticalCutting::AnalyticalCutting(const rockcut::Scene& scene) {
   const double n = rock.has_nishimatsu_exponent()
                        ? rock.nishimatsu_exponent()
                        : cm::nishimatsu_exponent_fit(cm::rake_angle_deg(alpha_deg));
-  const double face_m = tool.face_length_m() > 0 ? tool.face_length_m() : 3.0 * depth_m;
-  const double blade_height_m = face_m * std::sin(cm::radians(alpha_deg));
+  const double blade_height_m = rockcut::scene::tool_face_length_m(tool) * std::sin(cm::radians(alpha_deg));
   double under_pressure_pa = 0.0;  // dry: no pore water
   if (scene.has_fluid()) {
     const rockcut::Fluid& f = scene.fluid();

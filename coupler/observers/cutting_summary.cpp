@@ -5,6 +5,7 @@
 #include <span>
 
 #include "run/named_values_state.hpp"
+#include "scene/tool_geometry.hpp"
 
 namespace rockcut::coupler {
 
@@ -15,7 +16,7 @@ CuttingSummary::CuttingSummary(const rockcut::Scene& scene, std::vector<std::str
   }
   const rockcut::Tool& tool = scene.dem().tool();
   active_ = true;
-  steady_after_m_ = tool.steady_after_m() > 0 ? tool.steady_after_m() : 2.0 * tool.cutting_depth_m();
+  steady_after_m_ = rockcut::scene::tool_steady_after_m(tool);
   width_m_ = tool.width_m();
   cut_depth_m_ = tool.cutting_depth_m();
 }

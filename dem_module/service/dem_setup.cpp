@@ -10,6 +10,7 @@
 #include "core/packing_file.hpp"
 #include "core/specimen_generator.hpp"
 #include "core/viscous_damping.hpp"
+#include "scene/tool_geometry.hpp"
 
 namespace rockcut::dem {
 
@@ -123,9 +124,9 @@ ToolPlacement add_tool(const rockcut::Tool& t, const Particles& p, WallSet& wall
   tool.velocity_m_s = t.velocity_m_s();
   tool.width_m = t.width_m();
   tool.specimen_left_m = left;
-  tool.steady_after_m = t.steady_after_m() > 0 ? t.steady_after_m() : 2.0 * t.cutting_depth_m();
+  tool.steady_after_m = rockcut::scene::tool_steady_after_m(t);
   const double deg = std::numbers::pi / 180.0;
-  const double face = t.face_length_m() > 0 ? t.face_length_m() : 3.0 * t.cutting_depth_m();
+  const double face = rockcut::scene::tool_face_length_m(t);
   const double a = t.cutting_angle_deg() * deg, b = t.clearance_angle_deg() * deg;
   // Triangle: tip, top of the cutting face (leaning back at the cutting angle), end of the
   // clearance face (rising back at the clearance angle).

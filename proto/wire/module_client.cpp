@@ -34,8 +34,6 @@ ModuleClient::ModuleClient(zmq::context_t& context, std::string module_name,
   socket_.connect(endpoint);
 }
 
-ModuleClient::~ModuleClient() { watch_.reset(); }  // the monitor stops before the socket closes
-
 void ModuleClient::send(Message& request) {
   try {
     request.send(socket_);

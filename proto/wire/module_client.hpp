@@ -56,7 +56,6 @@ struct CurveClientKeys {
 
 class ModuleClient {
  public:
-  ~ModuleClient();
   ModuleClient(zmq::context_t& context, std::string module_name, const std::string& endpoint,
                std::chrono::milliseconds timeout, ClientHooks hooks,
                const std::optional<CurveClientKeys>& curve = std::nullopt);
@@ -78,7 +77,9 @@ class ModuleClient {
   std::chrono::milliseconds timeout_;
   ClientHooks hooks_;
   std::string endpoint_;
-  std::unique_ptr<ConnectionWatch> watch_;  ///< tcp only: the connection dropping is named at once
+  /// tcp only: the connection dropping is named at once. Declared after socket_, so destroyed
+  /// before it: the monitor stops while the socket it watches still exists.
+  std::unique_ptr<ConnectionWatch> watch_;
   bool curve_ = false;     ///< a CURVE session
   bool answered_ = false;  ///< a reply has come: the CURVE handshake, if any, succeeded
 };

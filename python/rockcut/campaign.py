@@ -20,7 +20,7 @@ from . import slurm
 # through this module by the verbs.
 from .campaign_run import (LOG, RECORD, clear_run, earlier_run, read_record,  # noqa: F401
                            slurm_run_of, state, write_record)
-from .summary_file import read_summary
+from .summary_file import read_json, read_summary
 
 PLAN = "sweep_plan.json"     # in the sweep folder: the runs a sweep will make
 TABLE = "sweep.csv"          # one row per run
@@ -56,11 +56,7 @@ def run_label(name, value, seed=None):
 
 def read_plan(out):
     """The sweep's plan (sweep_plan.json: case, name, values, seeds, set), or None."""
-    try:
-        with open(os.path.join(out, PLAN)) as f:
-            return json.load(f)
-    except (OSError, ValueError):
-        return None
+    return read_json(os.path.join(out, PLAN))
 
 
 def write_plan(out, case, name, values, seeds, sets, scheduler):

@@ -8,7 +8,7 @@ import re
 import shutil
 
 from . import slurm
-from .summary_file import read_summary
+from .summary_file import read_json, read_summary
 
 RECORD = "sweep_run.json"    # in a run's folder: the command that made it and how it ended
 LOG = "log.txt"              # in a run's folder: the command line and the coupler's output
@@ -16,11 +16,7 @@ LOG = "log.txt"              # in a run's folder: the command line and the coupl
 
 def read_record(d):
     """sweep_run.json of the run folder `d` as a dict, or None."""
-    try:
-        with open(os.path.join(d, RECORD)) as f:
-            return json.load(f)
-    except (OSError, ValueError):
-        return None
+    return read_json(os.path.join(d, RECORD))
 
 
 def write_record(d, record):

@@ -9,7 +9,6 @@
     run.breaks["x_m"], run.breaks["mode"]              # one row per broken bond (None: no breaks)
     run.scene                                          # the effective scene text the run used
 """
-import json
 import math
 import os
 import re

@@ -41,7 +41,8 @@ std::vector<CalibrationSummary::Sample>::const_iterator failure_peak(
 CalibrationSummary::CalibrationSummary(const rockcut::Scene& scene) {
   if (!scene.dem().has_loading_test()) return;
   active_ = true;
-  ucs_ = scene.dem().loading_test().kind() == "ucs";
+  biaxial_ = scene.dem().loading_test().kind() == "biaxial";
+  ucs_ = scene.dem().loading_test().kind() == "ucs" || biaxial_;
   if (scene.dem().has_specimen()) diameter_m_ = scene.dem().specimen().diameter_m();
   stop_at_split_ = !ucs_ && scene.dem().loading_test().stop_at_split();
 }
@@ -53,7 +54,14 @@ void CalibrationSummary::observe(const std::vector<std::pair<std::string, double
   const double* lateral = find_value(scalars, "lateral_strain");
   const double* gauge = find_value(scalars, "axial_strain_gauge");
   if (!strain || !load) return;
-  samples_.push_back({*strain, *load, lateral ? *lateral : 0.0, gauge ? *gauge : *strain});
+  double deviator = *load;
+  if (biaxial_) {
+    const double* confining = find_value(scalars, "lateral_stress_pa");
+    if (!confining) return;
+    lateral_stress_pa_.push_back(*confining);
+    deviator -= *confining;
+  }
+  samples_.push_back({*strain, deviator, lateral ? *lateral : 0.0, gauge ? *gauge : *strain});
   if (ucs_ || split_) return;
   const Sample& s = samples_.back();
   largest_load_ = std::max(largest_load_, s.load);
@@ -100,8 +108,30 @@ void CalibrationSummary::write(Summary& summary) const {
     if (split_) summary.set("split_axial_strain", split_strain_);
     return;
   }
-  const double peak = failure_peak(samples_)->load;
-  summary.set("ucs_pa", peak);
+  const auto peak_sample = failure_peak(samples_);
+  const double peak = peak_sample->load;
+  if (biaxial_) {
+    const double confining = lateral_stress_pa_[peak_sample - samples_.begin()];
+    summary.set("peak_axial_stress_pa", peak + confining);
+    summary.set("confining_stress_pa", confining);
+    summary.set("peak_deviator_stress_pa", peak);
+    summary.set("peak_axial_strain", peak_sample->axial_strain);
+    // The residual strength: the mean axial stress over the last fifth of the run's strain.
+    const double last_strain = samples_.back().axial_strain;
+    const double from = peak_sample->axial_strain + 0.8 * (last_strain - peak_sample->axial_strain);
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t k = 0; k < samples_.size(); ++k) {
+      if (samples_[k].axial_strain < from || samples_[k].axial_strain <= peak_sample->axial_strain) {
+        continue;
+      }
+      sum += samples_[k].load + lateral_stress_pa_[k];
+      ++n;
+    }
+    if (n > 0) summary.set("residual_axial_stress_pa", sum / n);
+  } else {
+    summary.set("ucs_pa", peak);
+  }
   double e = 0.0, lateral = 0.0;
   if (slopes_near_half_peak(samples_, 0.4, 0.6, e, lateral)) {
     summary.set("youngs_modulus_pa", e);
@@ -118,6 +148,7 @@ void CalibrationSummary::save_state(state::StateArchive& a) const {
     samples.insert(samples.end(), {s.axial_strain, s.load, s.lateral_strain, s.gauge_strain});
   }
   a.put("calibration_samples", std::move(samples), 4);
+  if (biaxial_) a.put("calibration_lateral_stress_pa", lateral_stress_pa_);
 }
 
 void CalibrationSummary::load_state(const state::StateArchive& a) {
@@ -131,6 +162,7 @@ void CalibrationSummary::load_state(const state::StateArchive& a) {
   for (std::size_t k = 0; k + 3 < samples.size(); k += 4) {
     samples_.push_back({samples[k], samples[k + 1], samples[k + 2], samples[k + 3]});
   }
+  if (biaxial_) a.get("calibration_lateral_stress_pa", lateral_stress_pa_, samples_.size());
 }
 
 std::string CalibrationSummary::end_reason(const RunClock& clock) const {

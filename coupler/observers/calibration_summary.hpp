@@ -1,6 +1,7 @@
 // The results of a calibration test (scene block dem.loading_test), from the DEM's step reports:
 // UCS, Young's modulus and Poisson's ratio for `ucs`, the Brazilian tensile strength for
-// `brazilian` (definitions in proto/rockcut/scene.proto, message LoadingTest).
+// `brazilian`, the peak and residual strength under a confining stress for `biaxial` (definitions
+// in proto/rockcut/scene.proto, message LoadingTest).
 #pragma once
 
 #include <string>
@@ -35,7 +36,8 @@ class CalibrationSummary : public RunObserver {
   bool test_over() const { return stop_at_split_ && split_; }
 
   struct Sample {
-    double axial_strain, load, lateral_strain;  // load: stress [Pa] (ucs) or force [N/m]
+    // load: stress [Pa] (ucs; biaxial: the deviator stress, axial minus lateral) or force [N/m]
+    double axial_strain, load, lateral_strain;
     // UCS: the axial strain over the specimen's middle half (axial_strain_gauge), which E and nu
     // are fitted against; the platens' strain where the DEM reports no gauge.
     double gauge_strain;
@@ -48,7 +50,8 @@ class CalibrationSummary : public RunObserver {
 
  private:
   bool active_ = false;
-  bool ucs_ = true;
+  bool ucs_ = true;      // ucs or biaxial: a stress-strain curve
+  bool biaxial_ = false;
   double diameter_m_ = 0.0;
   bool stop_at_split_ = false;
   // Brazilian split detector, updated by observe().
@@ -56,6 +59,7 @@ class CalibrationSummary : public RunObserver {
   double largest_load_ = 0.0;
   double split_load_ = 0.0, split_strain_ = 0.0;
   std::vector<Sample> samples_;
+  std::vector<double> lateral_stress_pa_;  // biaxial: sigma_3 of each sample
 };
 
 }  // namespace rockcut::coupler

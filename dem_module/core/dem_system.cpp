@@ -392,10 +392,20 @@ void DemSystem::step(double dt) {
     compute_internal_forces();
     finish_forces(settings_.prescribed_motion ? 0.0 : dt);
     in_split_step_ = false;
+    if (!servos_.empty()) steer_servo_walls();
     return;
   }
   if (in_split_step_) throw std::logic_error("step inside a split step");
   full_step(dt);
+  if (!servos_.empty()) steer_servo_walls();
+}
+
+void DemSystem::steer_servo_walls() {
+  const std::vector<WallBody>& bodies = walls_.bodies();
+  for (const WallServo& s : servos_) {
+    const double length_m = s.loaded_length_m(bodies[s.top].offset_y, bodies[s.bottom].offset_y);
+    walls_.set_velocity_x(s.body, s.velocity_x(bodies[s.body].force_x, length_m, dt_last_));
+  }
 }
 
 void DemSystem::full_step(double dt) {
@@ -473,6 +483,7 @@ void DemSystem::finish_step(double dt, std::span<const double> external) {
   if (!internal_forces_current_) compute_internal_forces();
   finish_forces(settings_.prescribed_motion ? 0.0 : dt);
   in_split_step_ = false;
+  if (!servos_.empty()) steer_servo_walls();
 }
 
 void DemSystem::hold_external_force(std::span<const double> external) {

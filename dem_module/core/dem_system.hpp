@@ -14,6 +14,7 @@
 #include "core/energy.hpp"
 #include "core/force_buffers.hpp"
 #include "core/particles.hpp"
+#include "core/wall_servo.hpp"
 #include "core/walls.hpp"
 
 namespace rockcut::dem {
@@ -82,6 +83,9 @@ class DemSystem {
   std::size_t add_clamped_group(std::vector<std::uint32_t> particles, double velocity_y_m_s,
                                 bool fixed = false);
   const ClampedGroup& clamped_group(std::size_t k) const { return clamped_[k]; }
+  /// Steers a wall by `servo` at the end of every step from now on (a biaxial test's side walls).
+  /// Stateless beyond the wall's velocity, which the checkpoint holds.
+  void add_wall_servo(const WallServo& servo) { servos_.push_back(servo); }
 
   const Particles& particles() const { return particles_; }
   const BondSet& bonds() const { return bonds_; }
@@ -144,6 +148,8 @@ class DemSystem {
   void hold_clamped_groups();
   /// v_y of the clamped discs back to the prescribed value after a kick, and their y force to 0.
   void reset_clamped_velocities();
+  /// Each servo-controlled wall's velocity for the next step from the forces of this one.
+  void steer_servo_walls();
 
   Particles particles_;
   DemSettings settings_;
@@ -157,6 +163,7 @@ class DemSystem {
   std::vector<std::uint32_t> freed_pairs_;
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
   std::vector<ClampedGroup> clamped_;
+  std::vector<WallServo> servos_;
   std::vector<ThreadSums> sums_;  ///< one per thread, for the pass in progress
   double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;

@@ -40,6 +40,8 @@ class WallSet {
   const std::vector<WallBody>& bodies() const { return bodies_; }
   /// Gives body `body` its own friction coefficient (>= 0) instead of the contact law's.
   void set_friction(std::uint32_t body, double friction) { bodies_.at(body).friction = friction; }
+  /// Sets body `body`'s x velocity from the next move on (a servo-controlled wall).
+  void set_velocity_x(std::uint32_t body, double velocity_x) { bodies_[body].velocity_x = velocity_x; }
   const std::vector<Segment>& segments() const { return segments_; }
   /// The discs of the listed (disc, segment) pairs, in list order.
   const std::vector<std::uint32_t>& listed_particles() const { return particle_; }

@@ -337,6 +337,13 @@ void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
   out["platen_force_n_per_m"] = force;
   out["axial_strain"] = (bottom.offset_y - top.offset_y) / rig.height0_m;
   if (rig.ucs) out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa
+  if (rig.biaxial) {
+    // sigma_3: the mean of the two walls' pressing forces over the loaded length.
+    const double length_m = rig.height0_m + top.offset_y - bottom.offset_y;
+    const double pressing = 0.5 * (s.walls().bodies()[rig.right_wall].force_x -
+                                   s.walls().bodies()[rig.left_wall].force_x);
+    out["lateral_stress_pa"] = pressing / length_m;
+  }
   // UCS: the specimen's lateral strain. Brazilian: the opening of the disc across its horizontal
   // diameter over D, which jumps when the disc splits (the split detector's input).
   const Particles& p = s.particles();

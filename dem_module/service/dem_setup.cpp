@@ -171,8 +171,16 @@ void select_loading_arcs(double arc_deg, double r_max, const Particles& p,
 LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, WallSet& walls,
                        std::vector<std::uint32_t>& top_layer,
                        std::vector<std::uint32_t>& bottom_layer) {
-  const bool ucs = test.kind() == "ucs";
+  const bool biaxial = test.kind() == "biaxial";
+  const bool ucs = test.kind() == "ucs" || biaxial;  // the same specimen, platens and gauges
   // Each test's holding option belongs to it; refused before anything is built.
+  if (biaxial != test.has_confining_stress_pa()) {
+    throw std::invalid_argument(
+        biaxial ? "dem.loading_test.confining_stress_pa: kind \"biaxial\" needs the stress its "
+                  "side walls hold (0 or more, Pa)"
+                : "dem.loading_test.confining_stress_pa: only kind \"biaxial\" has side walls to "
+                  "hold a confining stress");
+  }
   if (ucs && test.loading_arc_deg() > 0) {
     throw std::invalid_argument(
         "dem.loading_test.loading_arc_deg: the loading arc is for kind \"brazilian\"; a UCS "
@@ -202,6 +210,16 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
   if (test.has_platen_friction()) {
     walls.set_friction(rig.top, test.platen_friction());
     walls.set_friction(rig.bottom, test.platen_friction());
+  }
+  if (biaxial) {
+    // Frictionless side walls as long as the specimen is high and a platen's reach beyond: a
+    // membrane that presses but does not hold the sides back as they slide.
+    rig.biaxial = true;
+    const double h = top - bottom;
+    rig.left_wall = walls.add_body("side_left", {left, bottom - h, left, top + h}, false, 0.0, 0.0);
+    rig.right_wall = walls.add_body("side_right", {right, bottom - h, right, top + h}, false, 0.0, 0.0);
+    walls.set_friction(rig.left_wall, 0.0);
+    walls.set_friction(rig.right_wall, 0.0);
   }
   if (!rig.ucs && test.loading_arc_deg() > 0) {
     select_loading_arcs(test.loading_arc_deg(), r_max, p, top_layer, bottom_layer);
@@ -356,6 +374,26 @@ DemSetup build_dem(const rockcut::Dem& dem) {
                                   " m holds no disc centre; make it at least a disc radius");
     }
     setup.system->add_clamped_group(std::move(base), 0.0, /*fixed=*/true);
+  }
+  if (setup.rig.biaxial) {
+    const Particles& p = setup.system->particles();
+    double diameter_sum_m = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) diameter_sum_m += 2.0 * p.radius[i];
+    WallServo servo;
+    servo.stress_pa = dem.loading_test().confining_stress_pa();
+    servo.top = setup.rig.top;
+    servo.bottom = setup.rig.bottom;
+    servo.length0_m = setup.rig.height0_m;
+    // Every disc along the side touching the wall: L over the mean diameter contacts.
+    servo.stiffness_pa = settings.contact.normal_stiffness_pa * setup.rig.height0_m /
+                         (diameter_sum_m / static_cast<double>(p.size()));
+    servo.max_speed_m_s = dem.loading_test().platen_speed_m_s();
+    servo.body = setup.rig.left_wall;
+    servo.inward_x = 1.0;
+    setup.system->add_wall_servo(servo);
+    servo.body = setup.rig.right_wall;
+    servo.inward_x = -1.0;
+    setup.system->add_wall_servo(servo);
   }
   if (setup.rig.clamped_ends) {
     const double v = dem.loading_test().platen_speed_m_s();

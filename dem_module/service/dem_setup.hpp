@@ -28,7 +28,9 @@ struct ToolPlacement {
 /// A platen test as placed around the specimen.
 struct LoadingRig {
   bool present = false;
-  bool ucs = true;                      ///< else Brazilian
+  bool ucs = true;                      ///< UCS or biaxial specimen; else Brazilian
+  bool biaxial = false;                 ///< side walls held at a confining stress by servos
+  std::uint32_t left_wall = 0, right_wall = 0;  ///< biaxial: the servo-controlled side walls
   std::uint32_t top = 0, bottom = 0;    ///< wall bodies
   double height0_m = 0.0, width0_m = 0.0;
   std::vector<std::uint32_t> left_strip, right_strip;  ///< discs whose mean x gives the width

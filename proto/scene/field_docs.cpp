@@ -152,6 +152,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Centre-to-centre distance."},
     {"rockcut.LoadingTest.clamp_end_layers",
      "UCS: the discs within one largest diameter of the specimen's top and bottom move down and up with the platens and freely sideways, like a specimen whose ends are lapped flat and lubricated. false: the platens push on the rough ends, whose few protruding discs seat and crush first (docs/calibration.md measures what that does to E and the UCS)."},
+    {"rockcut.LoadingTest.confining_stress_pa",
+     "Biaxial: the stress the side walls hold on the specimen's sides, over the length between the platens. Each wall moves to close half the gap between the force the discs press on it with and this stress's force every step, no faster than platen_speed_m_s, so the confinement builds while the axial load starts and holds while the specimen dilates."},
     {"rockcut.LoadingTest.loading_arc_deg",
      "Brazilian: the discs on the disc's rim within this arc (total angle, centred on the vertical diameter) at the top and at the bottom move down and up with the platens and freely sideways, as curved loading jaws (ISRM) spread the load over an arc. 0: the flat platens push on the few discs that stand out of the rough rim, which crush first and delay the split. The centre's tensile stress under an arc 2a is 2F/(pi D t) (sin 2a - a)/a (Hondros), 0.977 of bts_pa at 15 degrees; bts_pa stays 2F/(pi D t), the standard's definition."},
     {"rockcut.LoadingTest.platen_friction",

@@ -36,6 +36,40 @@ TEST(CalibrationSummary, LinearElasticThenBrittle) {
   EXPECT_NEAR(number(out, "poisson_ratio"), nu, 1e-12);
 }
 
+// Biaxial: the peak is the deviator's, sigma_1 = deviator + the sigma_3 of that sample, and the
+// residual strength is the mean axial stress over the last fifth of the strain after the peak.
+TEST(CalibrationSummary, BiaxialPeakIsTheDeviatorsAndTheResidualTheLastFifthsMean) {
+  rockcut::Scene scene;
+  scene.mutable_dem()->mutable_loading_test()->set_kind("biaxial");
+  CalibrationSummary c(scene);
+  const double e = 5e9, confining = 2e6;
+  for (int k = 0; k <= 100; ++k) {  // deviator E eps up to 10 MPa at eps 2e-3
+    const double strain = 2e-5 * k;
+    c.observe({{"axial_strain", strain},
+               {"axial_stress_pa", confining + e * strain},
+               {"lateral_strain", 0.0},
+               {"lateral_stress_pa", confining}});
+  }
+  // Softening to a residual deviator of 4 MPa at strains 3.1e-3 .. 7.1e-3 (0.25e-3 apart).
+  for (int k = 0; k <= 16; ++k) {
+    c.observe({{"axial_strain", 3.1e-3 + 2.5e-4 * k},
+               {"axial_stress_pa", confining + 4e6 + (k % 2 ? 1e5 : -1e5)},
+               {"lateral_strain", 0.0},
+               {"lateral_stress_pa", confining}});
+  }
+  Summary out;
+  c.write(out);
+  EXPECT_FALSE(out.get("ucs_pa").has_value());
+  EXPECT_NEAR(number(out, "peak_deviator_stress_pa"), 1e7, 1e-6);
+  EXPECT_NEAR(number(out, "peak_axial_stress_pa"), 1.2e7, 1e-6);
+  EXPECT_NEAR(number(out, "confining_stress_pa"), confining, 1e-9);
+  EXPECT_NEAR(number(out, "peak_axial_strain"), 2e-3, 1e-15);
+  // The last fifth of 2e-3 .. 7.1e-3: strains from 6.08e-3, samples k = 12 .. 16 (- + - + -:
+  // mean 4 MPa - 1e5 / 5).
+  EXPECT_NEAR(number(out, "residual_axial_stress_pa"), confining + 4e6 - 2e4, 1e-6);
+  EXPECT_NEAR(number(out, "youngs_modulus_pa") / e, 1.0, 1e-12);
+}
+
 TEST(CalibrationSummary, ModulusAndPoissonRatioComeFromTheGaugeNotThePlatens) {
   // The platens also close the seating gap of the rough ends (half the platen strain here); the
   // gauge on the specimen's middle half sees only the specimen's strain.

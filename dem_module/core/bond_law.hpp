@@ -6,6 +6,7 @@
 // always_inline: with plain inline GCC 12 compiled the step loops differently (less vectorised).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace rockcut::dem {
@@ -15,6 +16,8 @@ struct BondLaw {
   double shear_stiffness_pa = 0.0;        ///< K_s [Pa] (N/m per metre of thickness)
   double tensile_strength_n_per_m = 0.0;  ///< T_n [N per metre of thickness]
   double shear_strength_n_per_m = 0.0;    ///< T_s [N per metre of thickness]
+  /// tan(phi_b): the shear strength's growth with the bond's compression (0: the paper's bond).
+  double friction_coefficient = 0.0;
 };
 
 /// How a bond broke.
@@ -32,7 +35,17 @@ struct BondBreak {
   return kn_pa * (rest_length_m - length_m);
 }
 
-/// Figure 4: exceeding a strength breaks the bond (tension: F_n < -T_n; shear: |F_t| > T_s).
+/// The shear strength of a bond carrying F_n (compression positive): T_s + tan(phi_b) max(F_n, 0),
+/// a Mohr-Coulomb bond as PFC's parallel bond with a friction angle (Itasca, linearpbond pb_fa).
+/// The paper's bond (figure 4) is tan(phi_b) = 0: its shear strength does not grow under
+/// compression, which leaves the bonded rock's peak envelope flat (docs/calibration.md, "The
+/// Mohr-Coulomb envelope"). With tan(phi_b) = 0 this returns T_s bit for bit.
+[[gnu::always_inline]] inline double bond_shear_strength(double ts, double tan_phi_b, double fn) {
+  return ts + tan_phi_b * std::max(fn, 0.0);
+}
+
+/// Figure 4: exceeding a strength breaks the bond (tension: F_n < -T_n; shear: |F_t| > T_s, with
+/// T_s from bond_shear_strength).
 [[gnu::always_inline]] inline bool bond_breaks(double fn, double fs, double tn, double ts) {
   return fn < -tn || fs > ts || fs < -ts;
 }

@@ -60,6 +60,7 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   double* shear = shear_force_.data();
   const double kn = law_.normal_stiffness_pa, ks_dt = law_.shear_stiffness_pa * dt;
   const double tn = law_.tensile_strength_n_per_m, ts = law_.shear_strength_n_per_m;
+  const double tan_phi_b = law_.friction_coefficient;
   const double cn_scale = kDashpots ? dashpot_scale(damping_ratio, kn) : 0.0;
   const double ct_scale = kDashpots ? dashpot_scale(damping_ratio, law_.shear_stiffness_pa) : 0.0;
   double dissipated = 0.0;
@@ -81,8 +82,9 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
     const double fs = shear_spring_update_hoisted(shear[k], ks_dt, vt);
     // Perfectly brittle: exceeding a strength breaks the bond in this evaluation, with no force.
     // The strengths bound the springs' forces; the dashpots beside them do not break a bond.
-    if (bond_breaks(fn, fs, tn, ts)) {
-      broken_[k] = 1 + static_cast<std::uint8_t>(bond_break_mode(fn, fs, tn, ts));
+    const double ts_fn = bond_shear_strength(ts, tan_phi_b, fn);
+    if (bond_breaks(fn, fs, tn, ts_fn)) {
+      broken_[k] = 1 + static_cast<std::uint8_t>(bond_break_mode(fn, fs, tn, ts_fn));
       normal_force_at_break_[k] = fn;
       shear[k] = fs;
       broke = true;

@@ -495,6 +495,17 @@ void DemSystem::hold_external_force(std::span<const double> external) {
   if (!has_body_forces_) {
     has_body_forces_ = std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
   }
+  for (std::size_t k = 0; k < membrane_.particles.size(); ++k) {
+    particles_.external_force[2 * membrane_.particles[k]] += membrane_.force_x_n_per_m[k];
+  }
+}
+
+void DemSystem::add_membrane_load(MembraneLoad load) {
+  membrane_ = std::move(load);
+  has_body_forces_ = has_body_forces_ || !membrane_.particles.empty();  // its work is booked
+  // The fluid's part of the held force stays; the membrane is added on top by the hold.
+  std::vector<double> held = particles_.external_force;
+  set_external_force(held);
 }
 
 void DemSystem::set_external_force(std::span<const double> external) {

@@ -14,6 +14,7 @@
 #include "core/energy.hpp"
 #include "core/force_buffers.hpp"
 #include "core/particles.hpp"
+#include "core/membrane_load.hpp"
 #include "core/wall_servo.hpp"
 #include "core/walls.hpp"
 
@@ -86,6 +87,10 @@ class DemSystem {
   /// Steers a wall by `servo` at the end of every step from now on (a biaxial test's side walls).
   /// Stateless beyond the wall's velocity, which the checkpoint holds.
   void add_wall_servo(const WallServo& servo) { servos_.push_back(servo); }
+  /// Adds a membrane's dead load (a biaxial test's confinement) to the held external force from
+  /// now on, on top of any fluid force, and re-evaluates a^n (call at t = 0).
+  void add_membrane_load(MembraneLoad load);
+  const MembraneLoad& membrane_load() const { return membrane_; }
 
   const Particles& particles() const { return particles_; }
   const BondSet& bonds() const { return bonds_; }
@@ -164,6 +169,7 @@ class DemSystem {
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
   std::vector<ClampedGroup> clamped_;
   std::vector<WallServo> servos_;
+  MembraneLoad membrane_;
   std::vector<ThreadSums> sums_;  ///< one per thread, for the pass in progress
   double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;

@@ -161,7 +161,9 @@ void DemService::subscribe(const wire::Subscribe& subscribe, wire::Message& repl
     }
   }
   send_fields_.assign(subscribe.fields().begin(), subscribe.fields().end());
-  setup_.guards.external_force_supplies_energy = subscribe.external_force_supplies_energy();
+  // A membrane's dead load (biaxial test) is a supply of energy like a wall's push.
+  setup_.guards.external_force_supplies_energy =
+      subscribe.external_force_supplies_energy() || !setup_.system->membrane_load().particles.empty();
   reply.envelope.mutable_ack();
 }
 
@@ -338,10 +340,13 @@ void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
   out["axial_strain"] = (bottom.offset_y - top.offset_y) / rig.height0_m;
   if (rig.ucs) out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa
   if (rig.biaxial) {
-    // sigma_3: the mean of the two walls' pressing forces over the loaded length.
+    // sigma_3 over the loaded length: the mean of the walls' pressing forces, or the membrane's
+    // line load sigma_c H (a dead load: it rises as the specimen shortens).
     const double length_m = rig.height0_m + top.offset_y - bottom.offset_y;
-    const double pressing = 0.5 * (s.walls().bodies()[rig.right_wall].force_x -
-                                   s.walls().bodies()[rig.left_wall].force_x);
+    const MembraneLoad& m = s.membrane_load();
+    const double pressing = rig.side_walls ? 0.5 * (s.walls().bodies()[rig.right_wall].force_x -
+                                                    s.walls().bodies()[rig.left_wall].force_x)
+                                           : m.stress_pa * m.height_m;
     out["lateral_stress_pa"] = pressing / length_m;
   }
   // UCS: the specimen's lateral strain. Brazilian: the opening of the disc across its horizontal

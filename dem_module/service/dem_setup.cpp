@@ -211,10 +211,15 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
     walls.set_friction(rig.top, test.platen_friction());
     walls.set_friction(rig.bottom, test.platen_friction());
   }
-  if (biaxial) {
+  rig.biaxial = biaxial;
+  if (!biaxial && test.has_confinement()) {
+    throw std::invalid_argument(
+        "dem.loading_test.confinement: only kind \"biaxial\" has a confining stress");
+  }
+  if (biaxial && test.confinement() == "walls") {
     // Frictionless side walls as long as the specimen is high and a platen's reach beyond: a
     // membrane that presses but does not hold the sides back as they slide.
-    rig.biaxial = true;
+    rig.side_walls = true;
     const double h = top - bottom;
     rig.left_wall = walls.add_body("side_left", {left, bottom - h, left, top + h}, false, 0.0, 0.0);
     rig.right_wall = walls.add_body("side_right", {right, bottom - h, right, top + h}, false, 0.0, 0.0);
@@ -309,7 +314,8 @@ DemSetup build_dem(const rockcut::Dem& dem) {
   if (dem.has_bonds()) {
     const rockcut::BondParameters& b = dem.bonds();
     const BondLaw law{b.normal_stiffness_pa(), b.shear_stiffness_pa(),
-                      b.tensile_strength_n_per_m(), b.shear_strength_n_per_m()};
+                      b.tensile_strength_n_per_m(), b.shear_strength_n_per_m(),
+                      std::tan(b.friction_angle_deg() * std::numbers::pi / 180.0)};
     CellGrid grid;
     bonds = BondSet::install(particles, law, b.gap_tolerance_m(), grid);
     char line[160];
@@ -375,7 +381,11 @@ DemSetup build_dem(const rockcut::Dem& dem) {
     }
     setup.system->add_clamped_group(std::move(base), 0.0, /*fixed=*/true);
   }
-  if (setup.rig.biaxial) {
+  if (setup.rig.biaxial && !setup.rig.side_walls) {
+    setup.system->add_membrane_load(
+        membrane_load(setup.system->particles(), dem.loading_test().confining_stress_pa()));
+  }
+  if (setup.rig.side_walls) {
     const Particles& p = setup.system->particles();
     double diameter_sum_m = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) diameter_sum_m += 2.0 * p.radius[i];
@@ -408,6 +418,8 @@ DemSetup build_dem(const rockcut::Dem& dem) {
                              dynamic ? dem.guards().max_overlap_ratio() : 0.0,
                              dynamic ? dem.guards().kinetic_energy_factor() : 0.0);
   guards.enabled = dem.guards().enabled();
+  // A membrane's dead load is a supply of energy like a wall's push (dry: no Subscribe sets it).
+  guards.external_force_supplies_energy = !setup.system->membrane_load().particles.empty();
   if (guards.enabled && guards.max_overlap_ratio > 0) {
     const OverlapExtreme o = largest_overlap(*setup.system);
     if (o.ratio > guards.max_overlap_ratio) {

@@ -29,8 +29,9 @@ struct ToolPlacement {
 struct LoadingRig {
   bool present = false;
   bool ucs = true;                      ///< UCS or biaxial specimen; else Brazilian
-  bool biaxial = false;                 ///< side walls held at a confining stress by servos
-  std::uint32_t left_wall = 0, right_wall = 0;  ///< biaxial: the servo-controlled side walls
+  bool biaxial = false;                 ///< a confining stress on the sides
+  bool side_walls = false;              ///< biaxial by servo-controlled walls; else a membrane
+  std::uint32_t left_wall = 0, right_wall = 0;  ///< the servo-controlled side walls
   std::uint32_t top = 0, bottom = 0;    ///< wall bodies
   double height0_m = 0.0, width0_m = 0.0;
   std::vector<std::uint32_t> left_strip, right_strip;  ///< discs whose mean x gives the width

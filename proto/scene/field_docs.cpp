@@ -10,6 +10,8 @@ namespace rockcut::scene {
 namespace {
 
 constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
+    {"rockcut.BondParameters.friction_angle_deg",
+     "phi_b: the shear strength grows with the bond's compression, T_s + tan(phi_b) F_n (a Mohr-Coulomb bond, as PFC's parallel bond's friction angle). 0, the paper's bond: the shear strength is T_s whatever the compression, and the rock's peak strength hardly grows with a confining stress (docs/calibration.md, \"The Mohr-Coulomb envelope\"). It lifts the UCS more than the BTS, so it sets UCS/BTS, which the paper's bond holds near 5.4."},
     {"rockcut.BondParameters.gap_tolerance_m",
      "Pairs whose surface gap is at most this are bonded."},
     {"rockcut.BondParameters.normal_stiffness_pa",
@@ -152,8 +154,10 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Centre-to-centre distance."},
     {"rockcut.LoadingTest.clamp_end_layers",
      "UCS: the discs within one largest diameter of the specimen's top and bottom move down and up with the platens and freely sideways, like a specimen whose ends are lapped flat and lubricated. false: the platens push on the rough ends, whose few protruding discs seat and crush first (docs/calibration.md measures what that does to E and the UCS)."},
+    {"rockcut.LoadingTest.confinement",
+     "Biaxial: how the confining stress is put on the specimen's sides. `membrane`: a flexible sleeve, the band's share sigma_c H / n on the outermost disc of each band 2 r_max high (dem_module/core/membrane_load.hpp), as a triaxial cell's rubber sleeve. `walls`: rigid frictionless side walls steered by servo control (dem_module/core/wall_servo.hpp), as PFC's biaxial test; on the rough sides of a specimen cut from a packing they press on the few discs that stand out, which crush first (docs/calibration.md measures both)."},
     {"rockcut.LoadingTest.confining_stress_pa",
-     "Biaxial: the stress the side walls hold on the specimen's sides, over the length between the platens. Each wall moves to close half the gap between the force the discs press on it with and this stress's force every step, no faster than platen_speed_m_s, so the confinement builds while the axial load starts and holds while the specimen dilates."},
+     "Biaxial: the stress on the specimen's sides. A membrane puts it on from the start; servo walls close half the gap between the force the discs press on them with and this stress over the length between the platens every step, no faster than platen_speed_m_s, so the confinement builds while the axial load starts."},
     {"rockcut.LoadingTest.loading_arc_deg",
      "Brazilian: the discs on the disc's rim within this arc (total angle, centred on the vertical diameter) at the top and at the bottom move down and up with the platens and freely sideways, as curved loading jaws (ISRM) spread the load over an arc. 0: the flat platens push on the few discs that stand out of the rough rim, which crush first and delay the split. The centre's tensile stress under an arc 2a is 2F/(pi D t) (sin 2a - a)/a (Hondros), 0.977 of bts_pa at 15 degrees; bts_pa stays 2F/(pi D t), the standard's definition."},
     {"rockcut.LoadingTest.platen_friction",

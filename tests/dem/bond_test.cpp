@@ -2,6 +2,8 @@
 // step's load increment, never in compression, and the broken pair may still collide.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/dem_system.hpp"
 #include "core/specimen_generator.hpp"
 #include "dem/dem_test_support.hpp"
@@ -58,6 +60,35 @@ TEST(Bond, BreaksInShearAtTs) {
   // The normal part of the motion is second order (the pair rotates), so the shear increment
   // per step is k_s v dt to within 1e-6.
   EXPECT_GT(last_shear, law.shear_strength_n_per_m - increment * 1.000001);
+}
+
+// A Mohr-Coulomb bond (dem.bonds.friction_angle_deg): sheared while compressed, it breaks in
+// shear when |F_t| reaches T_s + tan(phi_b) F_n, not at T_s; phi_b 0 is the paper's bond.
+TEST(Bond, FrictionAngleRaisesTheShearStrengthByTanPhiTimesTheCompression) {
+  for (const double phi_deg : {0.0, 30.0}) {
+    BondLaw law = test::table1_bond();
+    law.friction_coefficient = std::tan(phi_deg * std::acos(-1.0) / 180.0);
+    const double v = 1e-3, dt = 1e-8;
+    DemSystem s = driven_pair(-v, v, law);  // closing and sliding at once
+    double last_shear = 0.0, last_normal = 0.0;
+    while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
+      last_shear = std::abs(s.bonds().shear_force(0));
+      last_normal = s.bonds().normal_force(0, s.particles());
+      s.step(dt);
+    }
+    ASSERT_EQ(s.breaks().size(), 1u) << phi_deg;
+    EXPECT_EQ(s.breaks()[0].mode, BreakMode::shear) << phi_deg;
+    const double strength = law.shear_strength_n_per_m + law.friction_coefficient * last_normal;
+    // Below the strength at the last step carried, within one step's increments of it (shear
+    // k_s v dt less what tan(phi_b) k_n v dt adds).
+    const double increment =
+        (law.shear_stiffness_pa + law.friction_coefficient * law.normal_stiffness_pa) * v * dt;
+    EXPECT_LE(last_shear, strength) << phi_deg;
+    EXPECT_GT(last_shear, strength - 1.01 * increment) << phi_deg;
+    if (phi_deg > 0) {
+      EXPECT_GT(last_shear, 1.2 * law.shear_strength_n_per_m);  // 1.30 T_s here
+    }
+  }
 }
 
 TEST(Bond, NeverBreaksInCompressionAndCarriesIt) {

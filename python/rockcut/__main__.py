@@ -16,7 +16,9 @@ VERBS = {
     "plot": ("plot", "figures of runs: forces, damage, breaks of a cut; stress-strain of a "
                      "calibration"),
     "animate": ("animate", "a film (MP4 or GIF) of a run: discs to scale, the tool, a colour bar"),
-    "calibrate": ("calibrate", "UCS and Brazilian runs per parameter set and seed against Table 1"),
+    "calibrate": ("calibrate", "micro-parameters for a rock's UCS, BTS, E and nu (--target), or "
+                               "UCS and Brazilian runs per parameter set and seed"),
+    "envelope": ("envelope", "the rock's Mohr-Coulomb envelope (c, phi) from biaxial tests"),
     "accuracy": ("accuracy", "work-precision study of the coupled cut (error against wall time)"),
     "extreme": ("extreme", "run the stiff and extreme scenes (cases/extreme) and tabulate them"),
     "regression": ("regression", "regression cases (tests/regression): check, or re-measure"),

@@ -1,5 +1,9 @@
 """Calibration against Table 1's outputs (UCS 13.8 MPa, BTS 2.55 MPa, E 5.5 GPa, nu 0.22).
 
+With --target, finds the micro-parameters for a rock's properties instead (calibrate_target.py;
+`rockcut calibrate --target ucs=13.8MPa,bts=2.55MPa,E=5.5GPa,nu=0.22 --out DIR`). Without it,
+evaluates the parameter sets given:
+
 Runs the UCS and Brazilian scenes for each parameter set on several specimen seeds, concurrently,
 and writes
   OUT/calibration_runs.csv  one row per set and seed;
@@ -57,6 +61,9 @@ def run_one(out, name, sets, seed, test, coupler=None):
 
 
 def main(arguments):
+    if any(a == "--target" or a.startswith("--target=") for a in arguments):
+        from . import calibrate_target
+        return calibrate_target.main(arguments)
     parser = argparse.ArgumentParser(prog="rockcut calibrate", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("out", help="output directory")

@@ -217,8 +217,10 @@ def write_rock(path, start_rock, params, targets, means, errors, seeds, command,
         if name in means and means[name] == means[name]:
             dev = f", {means[name] / targets[name] - 1:+.1%}" if name in targets else ""
             lines.append(f"#   {name}: {fmt(name, means[name])} +- {fmt(name, errors[name])}{dev}")
+    stem = path[:-len(".pbtxt")] if path.endswith(".pbtxt") else path
+    coarse = stem + "_coarse.pbtxt"
     lines += ["# Not a scene on its own: a scene uses it as its `base:`. The coarse discs: "
-              f"{os.path.basename(path)[:-7]}_coarse.pbtxt.",
+              f"{os.path.basename(coarse)}.",
               f'base: "{base}"', "",
               "dem {",
               f"  contact {{ normal_stiffness_pa: {kn:.4g} shear_stiffness_pa: {ks:.4g} }}",
@@ -236,14 +238,13 @@ def write_rock(path, start_rock, params, targets, means, errors, seeds, command,
               f"  friction_angle_deg: {math.degrees(math.asin(sin_phi)):.4g}", "}", ""]
     with open(path, "w") as f:
         f.write("\n".join(lines))
-    stem = path[:-len(".pbtxt")] if path.endswith(".pbtxt") else path
-    coarse = stem + "_coarse.pbtxt"
     with open(coarse, "w") as f:
         f.write("\n".join([
             f"# {os.path.basename(path)} on discs {coarse_factor:g} times as large, for reduced scenes. "
             "Not a scene on its own.",
-            "# The bond strengths scale with the radius (a 2D bond's strength acts over about one "
-            "diameter), the stiffnesses (Pa) do not: the macro properties stay (default_rock_coarse.pbtxt).",
+            "# The bond strengths scale with the radius (a 2D bond's strength acts over about one",
+            "# diameter), the stiffnesses (Pa) do not: the macro properties stay "
+            "(default_rock_coarse.pbtxt).",
             f'base: "{os.path.basename(path)}"', "",
             "dem {",
             f"  specimen {{ radius_min_m: {params['radius_min_m'] * coarse_factor:.4g} "

@@ -93,6 +93,8 @@ class RoundTrip(unittest.TestCase):
         # The rock files: usable as a base, the coarse one beside the fine one.
         coarse = rock[:-len(".pbtxt")] + "_coarse.pbtxt"
         self.assertTrue(os.path.isfile(coarse))
+        with open(rock) as f:
+            self.assertIn(os.path.basename(coarse), f.read())
         scene = os.path.join(out, "found", "use.pbtxt")
         with open(scene, "w") as f:
             f.write(f'base: "{coarse}"\ntitle: "uses the found rock"\n'

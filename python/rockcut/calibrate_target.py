@@ -11,7 +11,8 @@ Each round runs the UCS and the Brazilian test on every seed (side by side, --jo
 means with the targets, and moves K_n, r and T_n by those rules; it stops when every target is
 within --tolerance, or after --max-rounds (then the rock file takes the round closest to the
 targets). A round already run in OUT is read back, not run again,
-so the same command resumes. Writes
+so the same command resumes. `--scheduler slurm` runs each round's tests as Slurm job arrays
+(`--time`, `--partition`, `--account`, `--sbatch-arg`) and waits for them. Writes
   OUT/calibration_rounds.csv   per round: the parameters, each property's mean +- standard error
                                over the seeds and its deviation from the target
   OUT/calibration_report.md    the result: targets, achieved means, rounds, runs, wall time
@@ -24,141 +25,17 @@ so the same command resumes. Writes
 """
 import argparse
 import csv
-import json
 import math
 import os
-import re
 import shlex
 import time
 
 from . import rock_tests, runs
+from .calibration_targets import PROPERTIES, fail, fmt, parse_targets, refuse_unreachable, structure
+from .rock_file import write_rock
+from .rock_structure import cold_start, next_params
 from .run_data import scalar_fields
 from .stats import mean_and_error
-
-UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
-PROPERTIES = {"ucs": "ucs_pa", "bts": "bts_pa", "E": "youngs_modulus_pa", "nu": "poisson_ratio"}
-SHOWN = {"ucs": (1e6, "MPa"), "bts": (1e6, "MPa"), "E": (1e9, "GPa"), "nu": (1.0, "")}
-
-
-def fail(message):
-    raise SystemExit(f"rockcut calibrate: {message}")
-
-
-def parse_targets(text):
-    """'ucs=13.8MPa,bts=2.55MPa,E=5.5GPa,nu=0.22' -> {name: value in Pa (nu: 1)}; one clear line
-    (SystemExit) for an unknown name, a missing or unknown unit, or an unphysical value."""
-    targets = {}
-    for item in [t.strip() for t in text.split(",") if t.strip()]:
-        name, eq, value = item.partition("=")
-        name = name.strip()
-        if not eq:
-            fail(f"--target: '{item}' is not NAME=VALUE (names: {', '.join(PROPERTIES)})")
-        if name not in PROPERTIES:
-            near = [p for p in PROPERTIES if p.lower() == name.lower()]
-            fail(f"--target: unknown property '{name}'"
-                 + (f" (did you mean '{near[0]}'?)" if near else "")
-                 + f"; allowed: {', '.join(PROPERTIES)}")
-        if name in targets:
-            fail(f"--target: '{name}' is given twice")
-        m = re.fullmatch(r"\s*([-+]?[0-9.]+(?:[eE][-+]?[0-9]+)?)\s*([A-Za-z]*)\s*", value)
-        if not m:
-            fail(f"--target: {name}: '{value}' is not a number")
-        number, unit = float(m.group(1)), m.group(2)
-        if name == "nu":
-            if unit:
-                fail(f"--target: nu has no unit, got '{value}'")
-            if not 0.0 < number < 0.5:
-                fail(f"--target: nu = {number:g} is outside 0 < nu < 0.5")
-            targets[name] = number
-            continue
-        if not unit:
-            fail(f"--target: {name}={value} needs a unit ({', '.join(UNITS)})")
-        if unit not in UNITS:
-            fail(f"--target: {name}: unknown unit '{unit}' (allowed: {', '.join(UNITS)})")
-        if number <= 0:
-            fail(f"--target: {name} = {value} must be above 0")
-        targets[name] = number * UNITS[unit]
-    if not targets:
-        fail("--target: give at least one of " + ", ".join(PROPERTIES))
-    if "ucs" not in targets and "bts" not in targets:
-        fail("--target: give ucs or bts (or both): the bond strengths need a strength to follow")
-    if "ucs" in targets and "bts" in targets and targets["bts"] >= targets["ucs"]:
-        fail(f"--target: bts ({targets['bts'] / 1e6:g} MPa) must be below ucs "
-             f"({targets['ucs'] / 1e6:g} MPa)")
-    return targets
-
-
-def structure():
-    with open(runs.case("rock", "bonded_disc_structure.json")) as f:
-        return json.load(f)
-
-
-def refuse_unreachable(targets, model):
-    """Says, before any run, when a target lies outside what the bonded discs produce."""
-    lo, hi = model["ucs_over_bts"]["reachable"]
-    if "ucs" in targets and "bts" in targets:
-        ratio = targets["ucs"] / targets["bts"]
-        if not lo <= ratio <= hi:
-            fail(f"UCS/BTS = {ratio:.2f} is outside what bonded circular discs reach ({lo:g}-{hi:g}; "
-                 "T_s/T_n, dem.bonds.friction_angle_deg and rolling friction hardly move it: "
-                 "cases/rock/bonded_disc_structure.json). No knob of this model lifts it (grains "
-                 "that interlock do: clumps, polygons or flat joints, Potyondy 2012). Calibrate to "
-                 "one strength instead: leave bts= (or ucs=) out of --target, and the other "
-                 f"follows at UCS/BTS ~ {0.5 * (lo + hi):.1f}")
-    nlo, nhi = model["poisson_ratio"]["reachable"]
-    if "nu" in targets and not nlo <= targets["nu"] <= nhi:
-        fail(f"nu = {targets['nu']:g} is outside what the bonded discs reach ({nlo:g}-{nhi:g} for "
-             "K_s/K_n from about 0.1 to 1.3); leave nu out of --target to keep the starting rock's "
-             "stiffness ratio")
-
-
-def lattice_shape(r):
-    """(1 + r)/(3 + r): how E changes with K_s/K_n at fixed K_n (hexagonal lattice)."""
-    return (1.0 + r) / (3.0 + r)
-
-
-def cold_start(targets, rock, model):
-    """Parameters from the structure alone: nothing of the starting rock but its disc size, its
-    strength ratio and its bond friction (and its stiffnesses where E or nu are not targets)."""
-    r = rock["ks_ratio"]
-    if "nu" in targets:
-        nu = model["poisson_ratio"]
-        r = math.exp((nu["a"] - targets["nu"]) / nu["b"])
-    kn = rock["kn"] * lattice_shape(rock["ks_ratio"]) / lattice_shape(r)
-    if "E" in targets:
-        kn = targets["E"] / (model["youngs_modulus"]["c"] * lattice_shape(r))
-    s = model["strength"]
-    guesses = []
-    if "ucs" in targets:
-        guesses.append(targets["ucs"] * s["ucs_factor"] * rock["diameter_m"])
-    if "bts" in targets:
-        guesses.append(targets["bts"] * s["bts_factor"] * rock["diameter_m"])
-    tn = math.exp(sum(math.log(g) for g in guesses) / len(guesses))
-    return {"kn": kn, "ks_ratio": r, "tn": tn, "ts_ratio": rock["ts_ratio"],
-            "phi_b_deg": rock["phi_b_deg"]}
-
-
-def next_params(rounds, targets, model):
-    """One step of the structure's rules from the rounds so far [(k, params, means, errors)]. The
-    stiffnesses move from the last round (E and nu scatter by 1-3 % between specimens). The
-    strength scale pools every round: strength is proportional to T, so each round k estimates
-    the T that meets the targets as T_k (target / measured) (the geometric mean over the targeted
-    strengths), and the next T is the geometric mean of those estimates. One round's BTS scatters
-    by 6-7 % over four seeds; the pooled estimate does not chase it."""
-    _, params, measured, _ = rounds[-1]
-    p = dict(params)
-    if "nu" in targets and "nu" in measured:
-        p["ks_ratio"] = params["ks_ratio"] * math.exp(
-            (measured["nu"] - targets["nu"]) / model["poisson_ratio"]["b"])
-    if "E" in targets and "E" in measured:
-        p["kn"] = (params["kn"] * targets["E"] / measured["E"] * lattice_shape(params["ks_ratio"])
-                   / lattice_shape(p["ks_ratio"]))
-    names = [k for k in ("ucs", "bts") if k in targets]
-    estimates = [math.log(q["tn"]) + sum(math.log(targets[k] / m[k]) for k in names) / len(names)
-                 for _, q, m, _ in rounds]
-    p["tn"] = math.exp(sum(estimates) / len(estimates))
-    return p
-
 
 def rock_parameters(ucs_scene, coupler):
     """The starting rock's disc size and micro-parameters as a run sees them (its bases merged)."""
@@ -177,21 +54,21 @@ def rock_parameters(ucs_scene, coupler):
             "radius_min_m": r_min, "radius_max_m": r_max}
 
 
-def evaluate(out, k, params, seeds, scenes, jobs, coupler, extra_sets):
+def evaluate(out, k, params, seeds, scenes, jobs, coupler, extra_sets, slurm_options=None):
     """Round k: the UCS and Brazilian tests of `params` on every seed -> (means, errors, runs,
     wall time summed over the runs)."""
     sets = rock_tests.micro_sets(params) + list(extra_sets)
     todo = []
     for seed in seeds:
         for test in ("ucs", "brazilian"):
-            todo.append((os.path.join(out, f"round{k}", f"seed={seed}", test), scenes[test],
+            todo.append((os.path.join(out, f"round{k}", test, f"seed={seed}"), scenes[test],
                          [f"dem.specimen.seed={seed}"] + sets))
-    results = rock_tests.run_all(todo, jobs, coupler)
+    results = rock_tests.run_all(todo, jobs, coupler, slurm_options)
     values = {name: [] for name in PROPERTIES}
     wall = 0.0
     for seed in seeds:
-        u = results[os.path.join(out, f"round{k}", f"seed={seed}", "ucs")]
-        b = results[os.path.join(out, f"round{k}", f"seed={seed}", "brazilian")]
+        u = results[os.path.join(out, f"round{k}", "ucs", f"seed={seed}")]
+        b = results[os.path.join(out, f"round{k}", "brazilian", f"seed={seed}")]
         values["ucs"].append(u["ucs_pa"])
         values["E"].append(u.get("youngs_modulus_pa", math.nan))
         values["nu"].append(u.get("poisson_ratio", math.nan))
@@ -205,62 +82,6 @@ def evaluate(out, k, params, seeds, scenes, jobs, coupler, extra_sets):
 
 def converged(targets, means, tolerance):
     return all(abs(means[k] / t - 1.0) <= tolerance for k, t in targets.items())
-
-
-def fmt(name, value):
-    scale, unit = SHOWN[name]
-    return f"{value / scale:.4g}{(' ' + unit) if unit else ''}"
-
-
-def write_rock(path, start_rock, params, targets, means, errors, seeds, command, coarse_factor):
-    """The fine rock file (base: the starting rock) and the coarse one beside it."""
-    path = os.path.abspath(path)
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    base = os.path.relpath(os.path.abspath(start_rock), os.path.dirname(path))
-    kn, ks = params["kn"], params["kn"] * params["ks_ratio"]
-    tn, ts = params["tn"], params["tn"] * params["ts_ratio"]
-    lines = [f"# A rock calibrated by `{command}`",
-             f"# on specimen seeds {','.join(map(str, seeds))} (mean +- standard error, deviation "
-             "from the target):"]
-    for name in PROPERTIES:
-        if name in means and means[name] == means[name]:
-            dev = f", {means[name] / targets[name] - 1:+.1%}" if name in targets else ""
-            lines.append(f"#   {name}: {fmt(name, means[name])} +- {fmt(name, errors[name])}{dev}")
-    stem = path[:-len(".pbtxt")] if path.endswith(".pbtxt") else path
-    coarse = stem + "_coarse.pbtxt"
-    lines += ["# Not a scene on its own: a scene uses it as its `base:`. The coarse discs: "
-              f"{os.path.basename(coarse)}.",
-              f'base: "{base}"', "",
-              "dem {",
-              f"  contact {{ normal_stiffness_pa: {kn:.4g} shear_stiffness_pa: {ks:.4g} }}",
-              "  bonds {",
-              f"    normal_stiffness_pa: {kn:.4g}", f"    shear_stiffness_pa: {ks:.4g}",
-              f"    tensile_strength_n_per_m: {tn:.4g}", f"    shear_strength_n_per_m: {ts:.4g}",
-              f"    friction_angle_deg: {params['phi_b_deg']:.4g}", "  }", "}", ""]
-    ucs, bts = means["ucs"], means["bts"]
-    sin_phi = (ucs - bts) / (ucs + bts)
-    lines += ["# For the analytical cutting models (the DEM does not read it): the measured UCS and BTS;",
-              "# c and phi of the straight envelope tangent to the UCS and BTS circles (Paul 1961,",
-              "# as default_rock.pbtxt) until `rockcut envelope` measures them.",
-              "rock {", f"  ucs_pa: {ucs:.4g}", f"  bts_pa: {bts:.4g}",
-              f"  cohesion_pa: {math.sqrt(ucs * bts) / 2:.4g}",
-              f"  friction_angle_deg: {math.degrees(math.asin(sin_phi)):.4g}", "}", ""]
-    with open(path, "w") as f:
-        f.write("\n".join(lines))
-    with open(coarse, "w") as f:
-        f.write("\n".join([
-            f"# {os.path.basename(path)} on discs {coarse_factor:g} times as large, for reduced scenes. "
-            "Not a scene on its own.",
-            "# The bond strengths scale with the radius (a 2D bond's strength acts over about one",
-            "# diameter), the stiffnesses (Pa) do not: the macro properties stay "
-            "(default_rock_coarse.pbtxt).",
-            f'base: "{os.path.basename(path)}"', "",
-            "dem {",
-            f"  specimen {{ radius_min_m: {params['radius_min_m'] * coarse_factor:.4g} "
-            f"radius_max_m: {params['radius_max_m'] * coarse_factor:.4g} }}",
-            f"  bonds {{ tensile_strength_n_per_m: {tn * coarse_factor:.4g} "
-            f"shear_strength_n_per_m: {ts * coarse_factor:.4g} }}", "}", ""]))
-    return path, coarse
 
 
 def main(argv):
@@ -285,10 +106,12 @@ def main(argv):
     parser.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
                         help="a scene override for every run, e.g. dem.damping.model=viscous")
     parser.add_argument("--jobs", type=int, default=runs.cpu_count(), help="runs at once")
+    rock_tests.add_scheduler_options(parser)
     parser.add_argument("--coupler", default=None, help="the coupler (default: as runs.py finds it)")
     args = parser.parse_args(argv)
 
     targets = parse_targets(args.target)
+    slurm_options = rock_tests.slurm_options(args)
     try:
         seeds = [int(s) for s in args.seeds.split(",") if s.strip()]
     except ValueError:
@@ -313,7 +136,7 @@ def main(argv):
     done = False
     for k in range(1, args.max_rounds + 1):
         means, errors, n, wall = evaluate(args.out, k, params, seeds, scenes, args.jobs,
-                                          args.coupler, args.set)
+                                          args.coupler, args.set, slurm_options)
         total_runs += n
         total_wall += wall
         rounds.append((k, dict(params), means, errors))

@@ -10,7 +10,8 @@ standard errors). Writes
   OUT/envelope_runs.csv   one row per run
   OUT/envelope.json       the fits and the check
   OUT/rock_block.pbtxt    the rock { } lines for the analytical cutting models
-A run already finished in OUT is not run again.
+A run already finished in OUT is not run again. `--scheduler slurm` runs them as Slurm job arrays
+(one per test and confining stress) and waits for them.
 
   rockcut envelope out/envelope                       # the default rock, 1, 2, 4 MPa, seeds 1-4
   rockcut envelope out/env --rock cases/rock/my_rock.pbtxt --confining-mpa 2,5,10 --seeds 1,2,3
@@ -75,8 +76,10 @@ def main(argv):
     parser.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
                         help="a scene override for every run (repeatable)")
     parser.add_argument("--jobs", type=int, default=runs.cpu_count(), help="runs at once")
+    rock_tests.add_scheduler_options(parser)
     parser.add_argument("--coupler", default=None, help="the coupler (default: found as runs.py says)")
     args = parser.parse_args(argv)
+    slurm_options = rock_tests.slurm_options(args)
     confining = parse_numbers(args.confining_mpa, "--confining-mpa")
     seeds = parse_numbers(args.seeds, "--seeds", int)
     if len(set(confining)) < 2 or min(confining) <= 0:
@@ -91,25 +94,25 @@ def main(argv):
     jobs = []
     for seed in seeds:
         base = [f"dem.specimen.seed={seed}"] + args.set
-        jobs.append((os.path.join(args.out, f"seed={seed}", "ucs"), scenes["ucs"], base))
+        jobs.append((os.path.join(args.out, "ucs", f"seed={seed}"), scenes["ucs"], base))
         for s3 in confining:
-            jobs.append((os.path.join(args.out, f"seed={seed}", f"biaxial_{s3:g}mpa"),
+            jobs.append((os.path.join(args.out, f"biaxial_{s3:g}mpa", f"seed={seed}"),
                          scenes["biaxial"],
                          base + [f"dem.loading_test.confining_stress_pa={s3 * 1e6:.6g}"]))
     print(f"envelope: {len(jobs)} runs ({len(seeds)} seeds x {len(confining)} confining stresses "
           f"+ UCS), {args.jobs} at a time, in {args.out}", flush=True)
-    results = rock_tests.run_all(jobs, args.jobs, args.coupler)
+    results = rock_tests.run_all(jobs, args.jobs, args.coupler, slurm_options)
 
     rows, peak, residual, ucs = [], {}, {}, {}
     for seed in seeds:
-        u = results[os.path.join(args.out, f"seed={seed}", "ucs")]
+        u = results[os.path.join(args.out, "ucs", f"seed={seed}")]
         ucs[seed] = u["ucs_pa"]
         rows.append({"seed": seed, "test": "ucs", "confining_target_mpa": 0.0,
                      "confining_mpa": 0.0, "peak_axial_mpa": u["ucs_pa"] / 1e6,
                      "residual_axial_mpa": math.nan, "wall_time_s": u["wall_time_s"]})
         peak[seed], residual[seed] = [], []
         for s3 in confining:
-            b = results[os.path.join(args.out, f"seed={seed}", f"biaxial_{s3:g}mpa")]
+            b = results[os.path.join(args.out, f"biaxial_{s3:g}mpa", f"seed={seed}")]
             peak[seed].append((b["confining_stress_pa"], b["peak_axial_stress_pa"]))
             if "residual_axial_stress_pa" in b:
                 residual[seed].append((b["confining_stress_pa"], b["residual_axial_stress_pa"]))

@@ -1,0 +1,59 @@
+"""The rock files `rockcut calibrate --target` writes: the fine one (`base:` the starting rock,
+the micro-parameters found, the measured UCS and BTS in its `rock { }` block) and its coarse twin
+beside it, the discs and the bond strengths scaled together."""
+import math
+import os
+
+from .calibration_targets import PROPERTIES, fmt
+
+def write_rock(path, start_rock, params, targets, means, errors, seeds, command, coarse_factor):
+    """The fine rock file (base: the starting rock) and the coarse one beside it."""
+    path = os.path.abspath(path)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    base = os.path.relpath(os.path.abspath(start_rock), os.path.dirname(path))
+    kn, ks = params["kn"], params["kn"] * params["ks_ratio"]
+    tn, ts = params["tn"], params["tn"] * params["ts_ratio"]
+    lines = [f"# A rock calibrated by `{command}`",
+             f"# on specimen seeds {','.join(map(str, seeds))} (mean +- standard error, deviation "
+             "from the target):"]
+    for name in PROPERTIES:
+        if name in means and means[name] == means[name]:
+            dev = f", {means[name] / targets[name] - 1:+.1%}" if name in targets else ""
+            lines.append(f"#   {name}: {fmt(name, means[name])} +- {fmt(name, errors[name])}{dev}")
+    stem = path[:-len(".pbtxt")] if path.endswith(".pbtxt") else path
+    coarse = stem + "_coarse.pbtxt"
+    lines += ["# Not a scene on its own: a scene uses it as its `base:`. The coarse discs: "
+              f"{os.path.basename(coarse)}.",
+              f'base: "{base}"', "",
+              "dem {",
+              f"  contact {{ normal_stiffness_pa: {kn:.4g} shear_stiffness_pa: {ks:.4g} }}",
+              "  bonds {",
+              f"    normal_stiffness_pa: {kn:.4g}", f"    shear_stiffness_pa: {ks:.4g}",
+              f"    tensile_strength_n_per_m: {tn:.4g}", f"    shear_strength_n_per_m: {ts:.4g}",
+              f"    friction_angle_deg: {params['phi_b_deg']:.4g}", "  }", "}", ""]
+    ucs, bts = means["ucs"], means["bts"]
+    sin_phi = (ucs - bts) / (ucs + bts)
+    lines += ["# For the analytical cutting models (the DEM does not read it): the measured UCS and BTS;",
+              "# c and phi of the straight envelope tangent to the UCS and BTS circles (Paul 1961,",
+              "# as default_rock.pbtxt) until `rockcut envelope` measures them.",
+              "rock {", f"  ucs_pa: {ucs:.4g}", f"  bts_pa: {bts:.4g}",
+              f"  cohesion_pa: {math.sqrt(ucs * bts) / 2:.4g}",
+              f"  friction_angle_deg: {math.degrees(math.asin(sin_phi)):.4g}", "}", ""]
+    with open(path, "w") as f:
+        f.write("\n".join(lines))
+    with open(coarse, "w") as f:
+        f.write("\n".join([
+            f"# {os.path.basename(path)} on discs {coarse_factor:g} times as large, for reduced scenes. "
+            "Not a scene on its own.",
+            "# The bond strengths scale with the radius (a 2D bond's strength acts over about one",
+            "# diameter), the stiffnesses (Pa) do not: the macro properties stay "
+            "(default_rock_coarse.pbtxt).",
+            f'base: "{os.path.basename(path)}"', "",
+            "dem {",
+            f"  specimen {{ radius_min_m: {params['radius_min_m'] * coarse_factor:.4g} "
+            f"radius_max_m: {params['radius_max_m'] * coarse_factor:.4g} }}",
+            f"  bonds {{ tensile_strength_n_per_m: {tn * coarse_factor:.4g} "
+            f"shear_strength_n_per_m: {ts * coarse_factor:.4g} }}", "}", ""]))
+    return path, coarse
+
+

@@ -24,6 +24,7 @@ import math
 import os
 
 from . import campaign, mohr_coulomb, rock_tests, runs
+from .run_data import scalar_fields
 from .stats import mean_and_error
 
 
@@ -64,14 +65,25 @@ def summarise(per_seed, pooled):
     return out
 
 
+def default_confining_mpa(ucs_scene, coupler):
+    """7.5, 15 and 30 % of the rock's UCS (its rock.ucs_pa), to one digit: the same share of the
+    strength for a weak and a strong rock (1, 2 and 4 MPa for the default rock). 1, 2 and 4 MPa
+    when the rock gives no UCS."""
+    ucs = scalar_fields(runs.effective_scene(ucs_scene, [], coupler), "rock").get("ucs_pa")
+    if not ucs:
+        return [1.0, 2.0, 4.0]
+    return [float(f"{f * ucs / 1e6:.1g}") for f in (0.075, 0.15, 0.3)]
+
+
 def main(argv):
     parser = argparse.ArgumentParser(prog="rockcut envelope", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("out", help="output folder")
     parser.add_argument("--rock", default=None,
                         help="rock file (cases/rock/*.pbtxt; default: the default rock)")
-    parser.add_argument("--confining-mpa", default="1,2,4",
-                        help="confining stresses [MPa], two or more above 0 (default 1,2,4)")
+    parser.add_argument("--confining-mpa", default=None,
+                        help="confining stresses [MPa], two or more above 0 (default: 7.5, 15 and "
+                             "30 %% of the rock's rock.ucs_pa, one digit; 1,2,4 without it)")
     parser.add_argument("--seeds", default="1,2,3,4", help="specimen seeds (default 1,2,3,4)")
     parser.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
                         help="a scene override for every run (repeatable)")
@@ -80,16 +92,19 @@ def main(argv):
     parser.add_argument("--coupler", default=None, help="the coupler (default: found as runs.py says)")
     args = parser.parse_args(argv)
     slurm_options = rock_tests.slurm_options(args)
-    confining = parse_numbers(args.confining_mpa, "--confining-mpa")
     seeds = parse_numbers(args.seeds, "--seeds", int)
-    if len(set(confining)) < 2 or min(confining) <= 0:
-        parser.error("--confining-mpa: two or more different stresses above 0 (the UCS test is "
-                     "run beside them as the check)")
     rock = args.rock or runs.case("rock", "default_rock.pbtxt")
     if not os.path.isfile(rock):
         parser.error(f"--rock: no file {rock}")
     os.makedirs(args.out, exist_ok=True)
     scenes = rock_tests.write_scenes(args.out, rock)
+    if args.confining_mpa is None:
+        confining = default_confining_mpa(scenes["ucs"], args.coupler)
+    else:
+        confining = parse_numbers(args.confining_mpa, "--confining-mpa")
+    if len(set(confining)) < 2 or min(confining) <= 0:
+        parser.error("--confining-mpa: two or more different stresses above 0 (the UCS test is "
+                     "run beside them as the check)")
 
     jobs = []
     for seed in seeds:

@@ -7,8 +7,11 @@ import re
 from . import runs
 
 UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
-PROPERTIES = {"ucs": "ucs_pa", "bts": "bts_pa", "E": "youngs_modulus_pa", "nu": "poisson_ratio"}
-SHOWN = {"ucs": (1e6, "MPa"), "bts": (1e6, "MPa"), "E": (1e9, "GPa"), "nu": (1.0, "")}
+# phi: the peak friction angle of the Mohr-Coulomb envelope through the UCS and one confined test.
+PROPERTIES = {"ucs": "ucs_pa", "bts": "bts_pa", "E": "youngs_modulus_pa", "nu": "poisson_ratio",
+              "phi": "friction_angle_deg"}
+SHOWN = {"ucs": (1e6, "MPa"), "bts": (1e6, "MPa"), "E": (1e9, "GPa"), "nu": (1.0, ""),
+         "phi": (1.0, "deg")}
 
 
 def fail(message):
@@ -40,6 +43,13 @@ def parse_targets(text):
                 fail(f"--target: nu has no unit, got '{value}'")
             if not 0.0 < number < 0.5:
                 fail(f"--target: nu = {number:g} is outside 0 < nu < 0.5")
+            targets[name] = number
+            continue
+        if name == "phi":
+            if unit != "deg":
+                fail(f"--target: phi={value} needs the unit deg, e.g. phi=20deg")
+            if not 0.0 < number < 90.0:
+                fail(f"--target: phi = {number:g} deg is outside 0 < phi < 90")
             targets[name] = number
             continue
         if not unit:
@@ -81,6 +91,14 @@ def refuse_unreachable(targets, model):
         fail(f"nu = {targets['nu']:g} is outside what the bonded discs reach ({nlo:g}-{nhi:g} for "
              "K_s/K_n from about 0.1 to 1.3); leave nu out of --target to keep the starting rock's "
              "stiffness ratio")
+    table = model["friction_angle"]["table"]
+    plo, phi_hi = table[0][1], table[-1][1]
+    if "phi" in targets and not plo <= targets["phi"] <= phi_hi:
+        fail(f"phi = {targets['phi']:g} deg is outside what the bonded discs reach ({plo:g}-"
+             f"{phi_hi:g} deg for dem.bonds.friction_angle_deg {table[0][0]:g}-{table[-1][0]:g}: "
+             "the bonds carry the load to the peak, and a bond's friction lifts the envelope only "
+             "so far); leave phi out of --target, and measure the rock's envelope with "
+             "`rockcut envelope`")
 
 
 def fmt(name, value):

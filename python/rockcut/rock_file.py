@@ -31,14 +31,19 @@ def write_rock(path, start_rock, params, targets, means, errors, seeds, command,
               f"    normal_stiffness_pa: {kn:.4g}", f"    shear_stiffness_pa: {ks:.4g}",
               f"    tensile_strength_n_per_m: {tn:.4g}", f"    shear_strength_n_per_m: {ts:.4g}",
               f"    friction_angle_deg: {params['phi_b_deg']:.4g}", "  }", "}", ""]
-    ucs, bts = means["ucs"], means["bts"]
-    sin_phi = (ucs - bts) / (ucs + bts)
-    lines += ["# For the analytical cutting models (the DEM does not read it): the measured UCS and BTS;",
-              "# c and phi of the straight envelope tangent to the UCS and BTS circles (Paul 1961,",
-              "# as default_rock.pbtxt) until `rockcut envelope` measures them.",
-              "rock {", f"  ucs_pa: {ucs:.4g}", f"  bts_pa: {bts:.4g}",
-              f"  cohesion_pa: {math.sqrt(ucs * bts) / 2:.4g}",
-              f"  friction_angle_deg: {math.degrees(math.asin(sin_phi)):.4g}", "}", ""]
+    ucs, bts, phi = means["ucs"], means["bts"], means.get("phi", math.nan)
+    if phi == phi:  # measured: the envelope through the UCS and the confined test
+        c = ucs * (1 - math.sin(math.radians(phi))) / (2 * math.cos(math.radians(phi)))
+        source = ["# c and phi of the straight envelope through the UCS and the confined test the",
+                  "# calibration ran (`rockcut envelope` fits one over more confining stresses)."]
+    else:
+        phi = math.degrees(math.asin((ucs - bts) / (ucs + bts)))
+        c = math.sqrt(ucs * bts) / 2
+        source = ["# c and phi of the straight envelope tangent to the UCS and BTS circles (Paul 1961,",
+                  "# as default_rock.pbtxt) until `rockcut envelope` measures them."]
+    lines += ["# For the analytical cutting models (the DEM does not read it): the measured UCS and BTS;"]
+    lines += source + ["rock {", f"  ucs_pa: {ucs:.4g}", f"  bts_pa: {bts:.4g}",
+                       f"  cohesion_pa: {c:.4g}", f"  friction_angle_deg: {max(phi, 0.0):.4g}", "}", ""]
     with open(path, "w") as f:
         f.write("\n".join(lines))
     with open(coarse, "w") as f:

@@ -3,6 +3,24 @@ cases/rock/bonded_disc_structure.json): where the first round starts, and how ea
 micro-parameters from the means measured in the rounds before."""
 import math
 
+
+def interpolate(table, x, column_in, column_out):
+    """Piecewise linear through the rows of `table`, clamped at its ends."""
+    rows = sorted(table, key=lambda r: r[column_in])
+    if x <= rows[0][column_in]:
+        return rows[0][column_out]
+    for a, b in zip(rows, rows[1:]):
+        if x <= b[column_in]:
+            t = (x - a[column_in]) / (b[column_in] - a[column_in])
+            return a[column_out] + t * (b[column_out] - a[column_out])
+    return rows[-1][column_out]
+
+
+def bond_friction_for(phi_deg, model):
+    """phi_b [deg] whose envelope has the peak friction angle phi (the structure's table)."""
+    return interpolate(model["friction_angle"]["table"], phi_deg, 1, 0)
+
+
 def lattice_shape(r):
     """(1 + r)/(3 + r): how E changes with K_s/K_n at fixed K_n (hexagonal lattice)."""
     return (1.0 + r) / (3.0 + r)
@@ -25,8 +43,8 @@ def cold_start(targets, rock, model):
     if "bts" in targets:
         guesses.append(targets["bts"] * s["bts_factor"] * rock["diameter_m"])
     tn = math.exp(sum(math.log(g) for g in guesses) / len(guesses))
-    return {"kn": kn, "ks_ratio": r, "tn": tn, "ts_ratio": rock["ts_ratio"],
-            "phi_b_deg": rock["phi_b_deg"]}
+    phi_b = bond_friction_for(targets["phi"], model) if "phi" in targets else rock["phi_b_deg"]
+    return {"kn": kn, "ks_ratio": r, "tn": tn, "ts_ratio": rock["ts_ratio"], "phi_b_deg": phi_b}
 
 
 def next_params(rounds, targets, model):
@@ -44,9 +62,19 @@ def next_params(rounds, targets, model):
     if "E" in targets and "E" in measured:
         p["kn"] = (params["kn"] * targets["E"] / measured["E"] * lattice_shape(params["ks_ratio"])
                    / lattice_shape(p["ks_ratio"]))
+    if "phi" in targets and measured.get("phi") == measured.get("phi"):
+        # The table's slope at the present phi_b, applied to the measured miss.
+        table = model["friction_angle"]["table"]
+        here = params["phi_b_deg"]
+        h = 5.0
+        slope = (interpolate(table, here + h, 0, 1) - interpolate(table, here - h, 0, 1)) / (2 * h)
+        phi_b = here + (targets["phi"] - measured["phi"]) / max(slope, 0.05)
+        p["phi_b_deg"] = min(max(phi_b, 0.0), table[-1][0])
     names = [k for k in ("ucs", "bts") if k in targets]
+    # Only the rounds at this bond friction: it lifts the strengths too.
+    same = [r for r in rounds if abs(r[1]["phi_b_deg"] - p["phi_b_deg"]) < 0.5] or rounds[-1:]
     estimates = [math.log(q["tn"]) + sum(math.log(targets[k] / m[k]) for k in names) / len(names)
-                 for _, q, m, _ in rounds]
+                 for _, q, m, _ in same]
     p["tn"] = math.exp(sum(estimates) / len(estimates))
     return p
 

@@ -47,6 +47,8 @@ class Refusals(unittest.TestCase):
             "ucs=2MPa,bts=3MPa": "must be below ucs",
             "E=5GPa,nu=0.2": "give ucs or bts",
             "ucs=40MPa,bts=4MPa,E=20GPa,nu=0.25": "UCS/BTS = 10.00 is outside",
+            "ucs=13.8MPa,phi=20": "needs the unit deg",
+            "ucs=13.8MPa,phi=40deg": "phi = 40 deg is outside what the bonded discs reach",
         }
         for target, words in cases.items():
             p = rockcut("calibrate", "--target", target, "--out", out)

@@ -63,13 +63,18 @@ def next_params(rounds, targets, model):
         p["kn"] = (params["kn"] * targets["E"] / measured["E"] * lattice_shape(params["ks_ratio"])
                    / lattice_shape(p["ks_ratio"]))
     if "phi" in targets and measured.get("phi") == measured.get("phi"):
-        # The table's slope at the present phi_b, applied to the measured miss.
+        # Each round estimates the phi_b that meets the target from its miss and the table's
+        # slope there; the next phi_b is their mean. A seed's phi, from two specimens, scatters
+        # by degrees, and the slope is a quarter: one round's miss alone would throw phi_b about.
         table = model["friction_angle"]["table"]
-        here = params["phi_b_deg"]
-        h = 5.0
-        slope = (interpolate(table, here + h, 0, 1) - interpolate(table, here - h, 0, 1)) / (2 * h)
-        phi_b = here + (targets["phi"] - measured["phi"]) / max(slope, 0.05)
-        p["phi_b_deg"] = min(max(phi_b, 0.0), table[-1][0])
+
+        def slope(phi_b, h=5.0):
+            return max((interpolate(table, phi_b + h, 0, 1) - interpolate(table, phi_b - h, 0, 1))
+                       / (2 * h), 0.05)
+
+        estimates = [q["phi_b_deg"] + (targets["phi"] - m["phi"]) / slope(q["phi_b_deg"])
+                     for _, q, m, _ in rounds if m.get("phi") == m.get("phi")]
+        p["phi_b_deg"] = min(max(sum(estimates) / len(estimates), 0.0), table[-1][0])
     names = [k for k in ("ucs", "bts") if k in targets]
     # Only the rounds at this bond friction: it lifts the strengths too.
     same = [r for r in rounds if abs(r[1]["phi_b_deg"] - p["phi_b_deg"]) < 0.5] or rounds[-1:]

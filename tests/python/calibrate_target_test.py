@@ -48,7 +48,7 @@ class Refusals(unittest.TestCase):
             "E=5GPa,nu=0.2": "give ucs or bts",
             "ucs=40MPa,bts=4MPa,E=20GPa,nu=0.25": "UCS/BTS = 10.00 is outside",
             "ucs=13.8MPa,phi=20": "needs the unit deg",
-            "ucs=13.8MPa,phi=40deg": "phi = 40 deg is outside what the bonded discs reach",
+            "ucs=13.8MPa,phi=30deg": "phi = 30 deg is outside what the bonded discs reach",
         }
         for target, words in cases.items():
             p = rockcut("calibrate", "--target", target, "--out", out)
@@ -112,6 +112,25 @@ class RoundTrip(unittest.TestCase):
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertEqual(harness.read_csv(os.path.join(out, "found", "calibration_rounds.csv")),
                          rounds)
+
+
+class FrictionAngle(unittest.TestCase):
+    def test_a_friction_angle_target_moves_the_bonds_friction_angle(self):
+        # phi 15 deg lies between the paper's bond (about 5 deg) and phi_b 70 (about 21 deg): the
+        # calibrator must find a bond friction angle between, with the UCS held. Measured on the
+        # coarse discs, seeds 1-4: four rounds, phi_b 55 deg, phi 15.2 +- 2.1 deg, UCS 20.0 MPa.
+        out = os.path.join(ARGS.tmp, "calibrate_phi")
+        shutil.rmtree(out, ignore_errors=True)
+        p = rockcut("calibrate", "--target", "ucs=20MPa,phi=15deg", "--rock", COARSE, "--seeds",
+                    "1,2,3,4", "--tolerance", "0.1", "--out", out)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        last = harness.read_csv(os.path.join(out, "calibration_rounds.csv"))[-1]
+        self.assertLessEqual(abs(float(last["phi"]) - 15.0), 2.0, last)  # the stated tolerance
+        self.assertLessEqual(abs(float(last["ucs_deviation"])), 0.1, last)
+        self.assertGreater(float(last["bond_friction_deg"]), 20.0, last)
+        with open(os.path.join(out, "rock.pbtxt")) as f:
+            text = f.read()
+        self.assertIn("through the UCS and the confined test", text)  # c, phi from the measured phi
 
 
 class Envelope(unittest.TestCase):

@@ -217,6 +217,15 @@ def main(argv):
         t = fmt(name, targets[name]) if name in targets else "-"
         dev = f"{m[name] / targets[name] - 1:+.1%}" if name in targets else ""
         report.append(f"| {name} | {t} | {fmt(name, m[name])} +- {fmt(name, e[name])} | {dev} |")
+    # What the seeds resolve: a target whose standard error is over half the tolerance is met on
+    # these seeds, not known to that tolerance (two standard errors).
+    for name, t in targets.items():
+        half_band = 0.5 * (max(args.tolerance * 20.0, 1.0) if name == "phi" else args.tolerance * t)
+        if e[name] == e[name] and e[name] > half_band:
+            sd = e[name] * math.sqrt(len(seeds))
+            report.append(f"\n{len(seeds)} seeds do not resolve {name} to the tolerance: its "
+                          f"standard error is {fmt(name, e[name])}; about "
+                          f"{math.ceil((sd / half_band) ** 2)} seeds would (`--seeds`).")
     report += ["", f"K_n {p['kn']:.4g} Pa, K_s/K_n {p['ks_ratio']:.4g}, T_n {p['tn']:.4g} N/m, "
                f"T_s/T_n {p['ts_ratio']:.4g}, bond friction {p['phi_b_deg']:.4g} deg.",
                f"Rock files: {rock_path}, {coarse_path}.", ""]

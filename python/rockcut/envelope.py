@@ -10,6 +10,7 @@ standard errors). Writes
   OUT/envelope_runs.csv   one row per run
   OUT/envelope.json       the fits and the check
   OUT/rock_block.pbtxt    the rock { } lines for the analytical cutting models
+  OUT/envelope.png        the strengths of each seed and the fitted lines
 A run already finished in OUT is not run again. `--scheduler slurm` runs them as Slurm job arrays
 (one per test and confining stress) and waits for them.
 
@@ -73,6 +74,32 @@ def default_confining_mpa(ucs_scene, coupler):
     if not ucs:
         return [1.0, 2.0, 4.0]
     return [float(f"{f * ucs / 1e6:.1g}") for f in (0.075, 0.15, 0.3)]
+
+
+def draw(path, seeds, ucs, peak, residual, report):
+    """envelope.png: each seed's UCS, confined peaks and residual strengths, and the fitted mean
+    lines sigma_1 = sigma_c + k sigma_3 of the peak and the residual."""
+    from .figures import plt  # only here: the verb's runs need no matplotlib
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    top = max(x for p in peak.values() for x, _ in p) * 1.05
+    for name, points, colour in (("peak", peak, "C0"), ("residual", residual, "C1")):
+        xs = [x / 1e6 for s in seeds for x, _ in points[s]]
+        ys = [y / 1e6 for s in seeds for _, y in points[s]]
+        ax.plot(xs, ys, "o", color=colour, alpha=0.6, label=f"{name}, each seed")
+        e = report[name]
+        if e["k"] == e["k"]:
+            ax.plot([0, top / 1e6], [e["sigma_c_pa"] / 1e6, (e["sigma_c_pa"] + e["k"] * top) / 1e6],
+                    "-", color=colour, label=f"{name}: c {e['cohesion_pa'] / 1e6:.3g} MPa, "
+                                               f"phi {e['friction_angle_deg']:.3g} deg")
+    ax.plot([0] * len(seeds), [ucs[s] / 1e6 for s in seeds], "s", color="C2", label="UCS test")
+    ax.set_xlabel("confining stress sigma_3 [MPa]")
+    ax.set_ylabel("axial stress sigma_1 [MPa]")
+    ax.set_xlim(left=-0.05 * top / 1e6)
+    ax.legend(fontsize=8)
+    ax.set_title("Mohr-Coulomb envelope (rockcut envelope)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
 
 
 def main(argv):
@@ -183,5 +210,7 @@ def main(argv):
                 f"  friction_angle_deg: {max(p['friction_angle_deg'], 0.0):.4g}"
                 + ("  # the fit's angle is negative; the field's least is 0"
                    if p["friction_angle_deg"] < 0 else "") + "\n}\n")
-    print(f"wrote {os.path.join(args.out, 'envelope.json')}, envelope_runs.csv and rock_block.pbtxt")
+    draw(os.path.join(args.out, "envelope.png"), seeds, ucs, peak, residual, report)
+    print(f"wrote {os.path.join(args.out, 'envelope.json')}, envelope_runs.csv, rock_block.pbtxt "
+          "and envelope.png")
     return 0

@@ -171,6 +171,7 @@ class Envelope(unittest.TestCase):
         self.assertAlmostEqual(report["peak"]["k"], b, places=4)
         self.assertIn("consistent", report["ucs_check"])
         self.assertTrue(os.path.isfile(os.path.join(out, "rock_block.pbtxt")))
+        self.assertGreater(os.path.getsize(os.path.join(out, "envelope.png")), 10000)
 
 
 if __name__ == "__main__":

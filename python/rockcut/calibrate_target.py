@@ -41,6 +41,7 @@ def rock_parameters(ucs_scene, coupler):
     """The starting rock's disc size and micro-parameters as a run sees them (its bases merged)."""
     text = runs.effective_scene(ucs_scene, [], coupler)
     spec, bonds = scalar_fields(text, "specimen"), scalar_fields(text, "bonds")
+    dem, contact = scalar_fields(text, "dem"), scalar_fields(text, "contact")
     r_min, r_max = spec.get("radius_min_m"), spec.get("radius_max_m")
     if not r_min or not r_max:
         fail(f"{ucs_scene}: the rock gives no specimen radius_min_m and radius_max_m")
@@ -51,7 +52,8 @@ def rock_parameters(ucs_scene, coupler):
             "ts_ratio": bonds.get("shear_strength_n_per_m", 2e4)
             / bonds.get("tensile_strength_n_per_m", 1e4),
             "phi_b_deg": bonds.get("friction_angle_deg", 0.0),
-            "radius_min_m": r_min, "radius_max_m": r_max}
+            "radius_min_m": r_min, "radius_max_m": r_max,
+            "density_kg_m3": dem.get("density_kg_m3"), "friction": contact.get("friction")}
 
 
 def confining_for_phi(targets):
@@ -200,8 +202,9 @@ def main(argv):
     k, p, m, e = min(rounds, key=lambda r: max(miss(n, t, r[2][n], args.tolerance)
                                                for n, t in targets.items()))
     rock_path, coarse_path = write_rock(args.write or os.path.join(args.out, "rock.pbtxt"),
-                                        start_rock, dict(p, radius_min_m=rock["radius_min_m"],
-                                                         radius_max_m=rock["radius_max_m"]),
+                                        start_rock, dict(p, **{k: rock[k] for k in (
+                                            "radius_min_m", "radius_max_m", "density_kg_m3",
+                                            "friction")}),
                                         targets, m, e, seeds, command, args.coarse_factor)
     report = [f"# Calibration: {'converged' if done else 'NOT converged'}", "",
               f"`{command}`", "",

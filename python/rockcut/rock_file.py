@@ -3,14 +3,28 @@ the micro-parameters found, the measured UCS and BTS in its `rock { }` block) an
 beside it, the discs and the bond strengths scaled together."""
 import math
 import os
+import re
 
 from .calibration_targets import PROPERTIES, fmt
 
+def base_of(rock_file):
+    """The `base:` a rock file names, or None."""
+    with open(rock_file) as f:
+        m = re.search(r'^base:\s*"([^"]*)"', f.read(), flags=re.M)
+    return m.group(1) if m else None
+
+
 def write_rock(path, start_rock, params, targets, means, errors, seeds, command, coarse_factor):
-    """The fine rock file (base: the starting rock) and the coarse one beside it."""
+    """The fine rock file and the coarse one beside it. The fine one's base is the starting rock;
+    written over the starting rock itself (regenerating a shipped rock), it keeps that file's own
+    base and writes the disc sizes, density and grain friction it held."""
     path = os.path.abspath(path)
     os.makedirs(os.path.dirname(path), exist_ok=True)
-    base = os.path.relpath(os.path.abspath(start_rock), os.path.dirname(path))
+    over_start = path == os.path.abspath(start_rock)
+    if over_start:
+        base = base_of(start_rock)
+    else:
+        base = os.path.relpath(os.path.abspath(start_rock), os.path.dirname(path))
     kn, ks = params["kn"], params["kn"] * params["ks_ratio"]
     tn, ts = params["tn"], params["tn"] * params["ts_ratio"]
     lines = [f"# A rock calibrated by `{command}`",
@@ -24,9 +38,16 @@ def write_rock(path, start_rock, params, targets, means, errors, seeds, command,
     coarse = stem + "_coarse.pbtxt"
     lines += ["# Not a scene on its own: a scene uses it as its `base:`. The coarse discs: "
               f"{os.path.basename(coarse)}.",
-              f'base: "{base}"', "",
-              "dem {",
-              f"  contact {{ normal_stiffness_pa: {kn:.4g} shear_stiffness_pa: {ks:.4g} }}",
+              *([f'base: "{base}"'] if base else []), "",
+              "dem {"]
+    if over_start:
+        lines += [f"  specimen {{ radius_min_m: {params['radius_min_m']:.6g} "
+                  f"radius_max_m: {params['radius_max_m']:.6g} }}"]
+        if params.get("density_kg_m3"):
+            lines += [f"  density_kg_m3: {params['density_kg_m3']:.6g}"]
+    friction = (f" friction: {params['friction']:.6g}"
+                if over_start and params.get("friction") is not None else "")
+    lines += [f"  contact {{ normal_stiffness_pa: {kn:.4g} shear_stiffness_pa: {ks:.4g}{friction} }}",
               "  bonds {",
               f"    normal_stiffness_pa: {kn:.4g}", f"    shear_stiffness_pa: {ks:.4g}",
               f"    tensile_strength_n_per_m: {tn:.4g}", f"    shear_strength_n_per_m: {ts:.4g}",

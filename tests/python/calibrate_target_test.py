@@ -114,6 +114,35 @@ class RoundTrip(unittest.TestCase):
                          rounds)
 
 
+class Regenerate(unittest.TestCase):
+    def test_writing_over_the_starting_rock_keeps_a_usable_rock(self):
+        # `--write` onto the `--rock` file (regenerating a shipped rock): the file must not name
+        # itself as its base, and keeps its own base, disc sizes, density and grain friction.
+        out = os.path.join(ARGS.tmp, "calibrate_regenerate")
+        shutil.rmtree(out, ignore_errors=True)
+        rocks = os.path.join(out, "rocks")
+        os.makedirs(rocks)
+        for name in ("default_rock.pbtxt", "default_rock_coarse.pbtxt"):
+            shutil.copy(os.path.join(REPO, "cases", "rock", name), rocks)
+        rock = os.path.join(rocks, "default_rock_coarse.pbtxt")
+        p = rockcut("calibrate", "--target", "ucs=20MPa", "--rock", rock, "--write", rock,
+                    "--seeds", "1,2", "--tolerance", "0.1", "--out", os.path.join(out, "run"))
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        with open(rock) as f:
+            text = f.read()
+        self.assertIn('base: "default_rock.pbtxt"', text)
+        scene = os.path.join(out, "use.pbtxt")
+        with open(scene, "w") as f:
+            f.write(f'base: "{rock}"\ntitle: "t"\ntime {{ end_time_s: 0.001 }}\n'
+                    'dem { specimen { width_m: 0.02 height_m: 0.02 } }\n')
+        v = subprocess.run([ARGS.coupler, "validate", scene, "--print"], capture_output=True,
+                           text=True)
+        self.assertEqual(v.returncode, 0, v.stderr)
+        for field in ("radius_min_m: 0.0008", "radius_max_m: 0.0016", "density_kg_m3: 2800",
+                      "friction: 1"):
+            self.assertIn(field, v.stdout)
+
+
 class FrictionAngle(unittest.TestCase):
     def test_a_friction_angle_target_moves_the_bonds_friction_angle(self):
         # phi 15 deg lies between the paper's bond (about 5 deg) and phi_b 70 (about 21 deg): the

@@ -151,6 +151,26 @@ TEST(MiedemaFailureMode, ModesFollowTheTensileStrength) {
   EXPECT_EQ(miedema_failure_mode(kC, 60.0, kBts, 60.0, 60.0).mode, "none");
 }
 
+// Miedema, The Delft Sand, Clay & Rock Cutting Model (2019a), exercise 16.8.5 "Cutting forces &
+// mechanisms" (the chapter of exercises): a rock of UCS 60 MPa and tensile strength 3 MPa, phi 20
+// deg, delta 13.33 deg, blade angle 60 deg. The book's worked numbers: shear angle 43.33 deg,
+// cohesion c = UCS (1 - sin phi) / (2 cos phi) = 21 MPa, normal stress on the shear plane 12.9 MPa,
+// shear stress 25.7 MPa, Mohr circle centre 22.27 MPa and radius 27.35 MPa, least principal stress
+// -5.09 MPa, below -3 MPa: the rock fails in tension. Tolerances: the book's rounding (0.05 MPa on
+// the one-decimal stresses, 0.01 MPa on the two-decimal one, 0.5 MPa on the integer cohesion).
+TEST(MiedemaFailureMode, BookExerciseSixtyMegapascalRock) {
+  // The book's delta 13.33 deg is 2/3 of phi, the usual choice, which its 43.33 deg also implies.
+  const double ucs = 60e6, phi = 20.0, delta = 2.0 * phi / 3.0, alpha = 60.0, bts = 3e6;
+  const double c = ucs * (1.0 - std::sin(radians(phi))) / (2.0 * std::cos(radians(phi)));
+  EXPECT_NEAR(c, 21e6, 0.5e6);
+  EXPECT_NEAR(merchant_shear_angle_deg(phi, delta, alpha), 43.33, 0.005);
+  const FailureMode m = miedema_failure_mode(c, phi, bts, delta, alpha);
+  EXPECT_NEAR(m.shear_plane_normal_stress_pa, 12.9e6, 0.05e6);
+  EXPECT_NEAR(c + m.shear_plane_normal_stress_pa * std::tan(radians(phi)), 25.7e6, 0.05e6);
+  EXPECT_NEAR(m.least_principal_stress_pa, -5.09e6, 0.01e6);
+  EXPECT_NE(m.mode, "shear");  // the circle reaches the tension cut-off: tensile failure
+}
+
 // ---- Hyperbaric --------------------------------------------------------------------------------
 
 TEST(HyperbaricFlowType, CavitationBoundIsTheAbsolutePressure) {

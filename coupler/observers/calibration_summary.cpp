@@ -121,11 +121,9 @@ void CalibrationSummary::write(Summary& summary) const {
     const double from = peak_sample->axial_strain + 0.8 * (last_strain - peak_sample->axial_strain);
     double sum = 0.0;
     int n = 0;
-    for (std::size_t k = 0; k < samples_.size(); ++k) {
-      if (samples_[k].axial_strain < from || samples_[k].axial_strain <= peak_sample->axial_strain) {
-        continue;
-      }
-      sum += samples_[k].load + lateral_stress_pa_[k];
+    for (auto it = peak_sample + 1; it != samples_.end(); ++it) {
+      if (it->axial_strain < from) continue;
+      sum += it->load + lateral_stress_pa_[it - samples_.begin()];
       ++n;
     }
     if (n > 0) summary.set("residual_axial_stress_pa", sum / n);

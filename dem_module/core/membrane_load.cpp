@@ -28,8 +28,8 @@ MembraneLoad membrane_load(const Particles& p, double stress_pa) {
     if (left[b] == kNone || x - r < p.position[2 * left[b]] - p.radius[left[b]]) left[b] = i;
     if (right[b] == kNone || x + r > p.position[2 * right[b]] + p.radius[right[b]]) right[b] = i;
   }
-  // A band without a disc (a hole in the packing) gives its share to no one: the line load is
-  // sigma_c H over the bands that hold discs, so each loaded band carries sigma_c H / n.
+  // A band without a disc (a hole in the packing) is skipped: the bands that hold discs, n of
+  // them, share the line load sigma_c H, sigma_c H / n each.
   std::size_t loaded = 0;
   for (std::size_t b = 0; b < bands; ++b) loaded += left[b] != kNone;
   const double share = stress_pa * m.height_m / static_cast<double>(std::max<std::size_t>(loaded, 1));

@@ -71,13 +71,13 @@ def evaluate(out, k, params, seeds, scenes, jobs, coupler, extra_sets, targets,
     sets = rock_tests.micro_sets(params) + list(extra_sets)
     tests = ("ucs", "brazilian") + (("biaxial",) if "phi" in targets else ())
     confining = [f"dem.loading_test.confining_stress_pa={confining_for_phi(targets):.6g}"]
-    todo = []
+    pending = []
     for seed in seeds:
         for test in tests:
-            todo.append((os.path.join(out, f"round{k}", test, f"seed={seed}"), scenes[test],
+            pending.append((os.path.join(out, f"round{k}", test, f"seed={seed}"), scenes[test],
                          [f"dem.specimen.seed={seed}"] + sets
                          + (confining if test == "biaxial" else [])))
-    results = rock_tests.run_all(todo, jobs, coupler, slurm_options)
+    results = rock_tests.run_all(pending, jobs, coupler, slurm_options)
     values = {name: [] for name in PROPERTIES}
     wall = 0.0
     for seed in seeds:
@@ -95,7 +95,7 @@ def evaluate(out, k, params, seeds, scenes, jobs, coupler, extra_sets, targets,
     means, errors = {}, {}
     for name, v in values.items():
         means[name], errors[name] = mean_and_error(v)
-    return means, errors, len(todo), wall
+    return means, errors, len(pending), wall
 
 
 def miss(name, target, mean, tolerance):
@@ -124,27 +124,18 @@ def main(argv):
     parser.add_argument("--write", default=None,
                         help="the rock file to write (default OUT/rock.pbtxt); NAME_coarse.pbtxt "
                              "goes beside it")
-    parser.add_argument("--seeds", default="1,2,3,4", help="specimen seeds (default 1,2,3,4)")
     parser.add_argument("--tolerance", type=float, default=0.03,
                         help="largest deviation of each mean from its target (default 0.03)")
     parser.add_argument("--max-rounds", type=int, default=6, help="rounds at most (default 6)")
     parser.add_argument("--coarse-factor", type=float, default=4.0,
                         help="disc size of the coarse rock file over the fine one (default 4)")
-    parser.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
-                        help="a scene override for every run, e.g. dem.damping.model=viscous")
-    parser.add_argument("--jobs", type=int, default=runs.cpu_count(), help="runs at once")
-    rock_tests.add_scheduler_options(parser)
-    parser.add_argument("--coupler", default=None, help="the coupler (default: as runs.py finds it)")
+    rock_tests.add_run_options(parser, "a scene override for every run, e.g. "
+                                       "dem.damping.model=viscous")
     args = parser.parse_args(argv)
 
     targets = parse_targets(args.target)
     slurm_options = rock_tests.slurm_options(args)
-    try:
-        seeds = [int(s) for s in args.seeds.split(",") if s.strip()]
-    except ValueError:
-        fail(f"--seeds: a comma-separated list of integers, got '{args.seeds}'")
-    if not seeds:
-        fail("--seeds: give at least one seed")
+    seeds = args.seeds
     if not 0 < args.tolerance < 1:
         fail(f"--tolerance {args.tolerance:g}: a fraction between 0 and 1, e.g. 0.03")
     model = structure()

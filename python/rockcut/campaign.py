@@ -11,6 +11,7 @@ collected from them. Every verb that reads or writes these files does it through
     DIR/sweep.csv, DIR/sweep_mean.csv the collected tables (collect, write_csv)
     DIR/job.sbatch, tasks.tsv, slurm_job_id, slurm_logs/   a sweep submitted to Slurm (slurm.py)
 """
+import argparse
 import csv
 import json
 import os
@@ -42,6 +43,17 @@ def as_number(value):
 
 # ---------------------------------------------------------------------------------------------
 # The plan and the run folders
+
+
+def parse_seeds(text):
+    """'1,2,3' -> [1, 2, 3] (distinct non-negative integers)."""
+    try:
+        seeds = [int(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected seeds like 1,2,3 , got '{text}'")
+    if not seeds or len(set(seeds)) != len(seeds) or min(seeds) < 0:
+        raise argparse.ArgumentTypeError(f"expected distinct seeds >= 0 like 1,2,3 , got '{text}'")
+    return seeds
 
 
 def run_dir(out, name, value, seed=None):

@@ -29,9 +29,9 @@ from .run_data import scalar_fields
 from .stats import mean_and_error
 
 
-def parse_numbers(text, what, kind=float):
+def parse_numbers(text, what):
     try:
-        values = [kind(v) for v in text.split(",") if v.strip()]
+        values = [float(v) for v in text.split(",") if v.strip()]
     except ValueError:
         raise SystemExit(f"rockcut envelope: {what}: a comma-separated list of numbers, got '{text}'")
     if not values:
@@ -111,15 +111,10 @@ def main(argv):
     parser.add_argument("--confining-mpa", default=None,
                         help="confining stresses [MPa], two or more above 0 (default: 7.5, 15 and "
                              "30 %% of the rock's rock.ucs_pa, one digit; 1,2,4 without it)")
-    parser.add_argument("--seeds", default="1,2,3,4", help="specimen seeds (default 1,2,3,4)")
-    parser.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
-                        help="a scene override for every run (repeatable)")
-    parser.add_argument("--jobs", type=int, default=runs.cpu_count(), help="runs at once")
-    rock_tests.add_scheduler_options(parser)
-    parser.add_argument("--coupler", default=None, help="the coupler (default: found as runs.py says)")
+    rock_tests.add_run_options(parser, "a scene override for every run (repeatable)")
     args = parser.parse_args(argv)
     slurm_options = rock_tests.slurm_options(args)
-    seeds = parse_numbers(args.seeds, "--seeds", int)
+    seeds = args.seeds
     rock = args.rock or runs.case("rock", "default_rock.pbtxt")
     if not os.path.isfile(rock):
         parser.error(f"--rock: no file {rock}")

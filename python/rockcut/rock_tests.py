@@ -17,7 +17,7 @@ import re
 import shutil
 import time
 
-from . import runs, slurm
+from . import campaign, runs, slurm
 from .summary_file import read_json, read_summary
 
 TESTS = ("ucs", "brazilian", "biaxial")
@@ -92,21 +92,21 @@ def run_one(run_dir, request, coupler):
     return summary
 
 
-def run_local(todo, jobs, coupler):
+def run_local(pending, jobs, coupler):
     runs.side_by_side(jobs)
     results = {}
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        futures = {pool.submit(run_one, d, request, coupler): d for d, request in todo}
+        futures = {pool.submit(run_one, d, request, coupler): d for d, request in pending}
         for future in concurrent.futures.as_completed(futures):
             results[futures[future]] = future.result()
     return results
 
 
-def run_slurm(todo, coupler, options):
+def run_slurm(pending, coupler, options):
     """One job array per folder of runs (each holds one test's seeds, one scene), submitted with
     `options` (time, partition, account, sbatch_args); waits until every run has its exit code."""
     arrays = {}
-    for d, request in todo:
+    for d, request in pending:
         arrays.setdefault(os.path.dirname(d), []).append((d, request))
     for folder, group in arrays.items():
         scenes = {request["scene"] for _, request in group}
@@ -123,9 +123,9 @@ def run_slurm(todo, coupler, options):
         job = slurm.submit(folder)
         print(f"  {len(tasks)} runs of {os.path.basename(folder)} as Slurm job {job}", flush=True)
     results, last, last_change = {}, None, time.monotonic()
-    while len(results) < len(todo):
+    while len(results) < len(pending):
         seen = []
-        for d, _ in todo:
+        for d, _ in pending:
             if d in results:
                 continue
             code = slurm.exit_code_of(d)
@@ -142,7 +142,7 @@ def run_slurm(todo, coupler, options):
         elif time.monotonic() - last_change > STALL_S:
             raise RuntimeError(f"no Slurm task of {len(seen)} runs has moved for {STALL_S:.0f} s "
                                f"(squeue; their logs in .../slurm_logs): {seen[0][0]} ...")
-        if len(results) < len(todo):
+        if len(results) < len(pending):
             time.sleep(POLL_S)
     return results
 
@@ -152,22 +152,28 @@ def run_all(jobs_list, jobs, coupler=None, slurm_options=None):
     with `slurm_options` (time, partition, account, sbatch_args); returns {run_dir: summary}.
     Runs already finished with the same request are read back."""
     coupler = runs.coupler(coupler)
-    results, todo = {}, []
+    results, pending = {}, []
     for d, scene, sets in jobs_list:
         request = {"scene": os.path.abspath(scene), "sets": list(sets)}
         summary = finished(d, request)
         if summary:
             results[d] = summary
         else:
-            todo.append((d, request))
-    if todo:
-        results.update(run_slurm(todo, coupler, slurm_options) if slurm_options
-                       else run_local(todo, jobs, coupler))
+            pending.append((d, request))
+    if pending:
+        results.update(run_slurm(pending, coupler, slurm_options) if slurm_options
+                       else run_local(pending, jobs, coupler))
     return results
 
 
-def add_scheduler_options(parser):
-    """--scheduler local|slurm and the Slurm job's options, as `rockcut sweep` has them."""
+def add_run_options(parser, set_help):
+    """The options `rockcut calibrate --target` and `rockcut envelope` share: seeds, --set, --jobs,
+    --scheduler local|slurm with the Slurm job's options (as `rockcut sweep` has them), --coupler."""
+    parser.add_argument("--seeds", type=campaign.parse_seeds, default=[1, 2, 3, 4],
+                        help="specimen seeds (default 1,2,3,4)")
+    parser.add_argument("--set", action="append", default=[], metavar="PATH=VALUE", help=set_help)
+    parser.add_argument("--jobs", type=int, default=runs.cpu_count(), help="runs at once")
+    parser.add_argument("--coupler", default=None, help="the coupler (default: as runs.py finds it)")
     parser.add_argument("--scheduler", choices=("local", "slurm"), default="local",
                         help="run here (--jobs at a time) or as Slurm job arrays (default local)")
     parser.add_argument("--time", default="01:00:00",
@@ -179,7 +185,7 @@ def add_scheduler_options(parser):
 
 
 def slurm_options(args):
-    """The options run_all takes from add_scheduler_options' arguments (None: run here)."""
+    """The options run_all takes from add_run_options' arguments (None: run here)."""
     if args.scheduler != "slurm":
         return None
     try:

@@ -60,6 +60,7 @@ import os
 import sys
 
 from . import campaign, runs, slurm
+from .campaign import parse_seeds
 from .collect import collect_campaign, tables_and_figures
 from .status import print_status
 from .sweep_local import run_sweep
@@ -82,17 +83,6 @@ def parse_vary(text):
     if len(set(values)) != len(values):
         raise argparse.ArgumentTypeError(f"repeated value in '{text}'")
     return name.strip(), values
-
-
-def parse_seeds(text):
-    """'1,2,3' -> [1, 2, 3] (distinct non-negative integers)."""
-    try:
-        seeds = [int(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected seeds like 1,2,3 , got '{text}'")
-    if not seeds or len(set(seeds)) != len(seeds) or min(seeds) < 0:
-        raise argparse.ArgumentTypeError(f"expected distinct seeds >= 0 like 1,2,3 , got '{text}'")
-    return seeds
 
 
 def parse_args(argv):

@@ -29,6 +29,16 @@ COARSE = os.path.join(REPO, "cases", "rock", "default_rock_coarse.pbtxt")
 CHOSEN = {"kn": 1.015e10, "ks_ratio": 0.35, "tn": 3.325e4}
 
 
+def validated_on(rock, scene):
+    """`coupler validate --print` of a small scene at `scene` whose base is the rock file `rock`:
+    the rock as a scene sees it."""
+    with open(scene, "w") as f:
+        f.write(f'base: "{rock}"\ntitle: "uses the rock"\ntime {{ end_time_s: 0.001 }}\n'
+                'dem { specimen { width_m: 0.02 height_m: 0.02 } }\n')
+    return subprocess.run([ARGS.coupler, "validate", scene, "--print"], capture_output=True,
+                          text=True)
+
+
 def rockcut(*args):
     """The verb as a user runs it; the coupler under test through ROCKCUT_COUPLER."""
     return subprocess.run([sys.executable, "-m", "rockcut", *args], capture_output=True, text=True,
@@ -97,12 +107,7 @@ class RoundTrip(unittest.TestCase):
         self.assertTrue(os.path.isfile(coarse))
         with open(rock) as f:
             self.assertIn(os.path.basename(coarse), f.read())
-        scene = os.path.join(out, "found", "use.pbtxt")
-        with open(scene, "w") as f:
-            f.write(f'base: "{coarse}"\ntitle: "uses the found rock"\n'
-                    'time { end_time_s: 0.001 }\ndem { specimen { width_m: 0.02 height_m: 0.02 } }\n')
-        v = subprocess.run([ARGS.coupler, "validate", scene, "--print"], capture_output=True,
-                           text=True)
+        v = validated_on(coarse, os.path.join(out, "found", "use.pbtxt"))
         self.assertEqual(v.returncode, 0, v.stderr)
         self.assertIn("radius_min_m: 0.0016", v.stdout)
         # Started again on its folder it reads its rounds back instead of running them.
@@ -131,12 +136,7 @@ class Regenerate(unittest.TestCase):
         with open(rock) as f:
             text = f.read()
         self.assertIn('base: "default_rock.pbtxt"', text)
-        scene = os.path.join(out, "use.pbtxt")
-        with open(scene, "w") as f:
-            f.write(f'base: "{rock}"\ntitle: "t"\ntime {{ end_time_s: 0.001 }}\n'
-                    'dem { specimen { width_m: 0.02 height_m: 0.02 } }\n')
-        v = subprocess.run([ARGS.coupler, "validate", scene, "--print"], capture_output=True,
-                           text=True)
+        v = validated_on(rock, os.path.join(out, "use.pbtxt"))
         self.assertEqual(v.returncode, 0, v.stderr)
         for field in ("radius_min_m: 0.0008", "radius_max_m: 0.0016", "density_kg_m3: 2800",
                       "friction: 1"):

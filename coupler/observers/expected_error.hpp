@@ -22,14 +22,18 @@ struct CutSettings {
   double size_scale = 0.0;      ///< mean radius / that of saturated_reduced (1.2 mm)
 };
 
-/// One setting of a ladder and the relative error of the mean horizontal force there.
+/// One setting of a ladder and the relative error of the study's horizontal force there.
 struct LadderPoint {
   double value = 0.0;
   double force_error = 0.0;
 };
 
-/// The study's four ladders (the columns of CutSettings), each coarsest first, finest last.
+/// The study's four ladders (the columns of CutSettings), each coarsest first, finest last, for
+/// one damping model, and the force whose error they give: "mean" (force_horizontal_mean_n_per_m,
+/// the study under local damping) or "peak" (force_horizontal_peak_n_per_m, under dashpots, where
+/// the mean is mostly the zeros between chips: docs/model.md, "Damping").
 struct ErrorModel {
+  std::string force = "mean";
   std::vector<LadderPoint> dt_safety, fluid_step_ratio, h_per_diameter, size_scale;
 };
 
@@ -37,14 +41,19 @@ struct ErrorModel {
 /// (the build tree and an installation alike).
 std::filesystem::path error_model_path(const std::filesystem::path& program_dir);
 
-/// Reads the study's table (CSV: '#' comment lines, a header naming `ladder`, `value` and
-/// `force_error`, one row per setting). Throws std::runtime_error "FILE:LINE: problem" on a file
-/// that cannot be read, a bad number, an unknown ladder, a ladder with fewer than two settings or
-/// settings out of order.
-ErrorModel read_error_model(const std::filesystem::path& csv);
+/// Reads the study's rows for `damping` (a dem.damping.model) from its table (CSV: '#' comment
+/// lines, a header naming `ladder`, `value` and `force_error`, and optionally `damping` (a row
+/// without it is "local") and `force` ("mean" or "peak", the same on every row of one damping;
+/// "mean" without it), one row per setting). Empty when the table has no row for `damping`; then
+/// `studied`, if given, gets the damping models it has. Throws std::runtime_error "FILE:LINE:
+/// problem" on a file that cannot be read, a bad number, an unknown ladder or force, a ladder with
+/// fewer than two settings or settings out of order.
+std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
+                                           const std::string& damping = "local",
+                                           std::vector<std::string>* studied = nullptr);
 
-/// One line for the start-up report: the expected relative error of the mean horizontal force for
-/// each setting, and their root sum square; or why the study does not cover the scene, or why its
+/// One line for the start-up report: the expected relative error of the study's horizontal force
+/// (mean or peak, by the scene's damping) for each setting, and their root sum square; or why the study does not cover the scene, or why its
 /// table could not be read. Nothing for scenes that are not saturated cuts of a specimen.
 std::optional<std::string> expected_error_line(const rockcut::Scene& scene, const TimePlan& plan,
                                                double dem_limit_s, double fluid_stiffness_limit_s,

@@ -42,7 +42,7 @@ TEST(ExpectedError, TheProgramsCopyOfTheTableIsTheStudys) {
 }
 
 TEST(ExpectedError, EverySettingOfTheTableGivesItsError) {
-  const ErrorModel m = read_error_model(kTable);
+  const ErrorModel m = *read_error_model(kTable);
   EXPECT_GE(m.dt_safety.size(), 3u);
   EXPECT_GE(m.fluid_step_ratio.size(), 3u);
   // One ladder at a time away from its finest: the result is that ladder's own error.
@@ -69,7 +69,7 @@ TEST(ExpectedError, EverySettingOfTheTableGivesItsError) {
 }
 
 TEST(ExpectedError, InterpolatesLinearlyInTheLogAndCombinesByRootSumSquare) {
-  const ErrorModel m = read_error_model(kTable);
+  const ErrorModel m = *read_error_model(kTable);
   const auto only = [&](auto field, double value) {
     CutSettings s = finest(m);
     s.*field = value;
@@ -94,7 +94,7 @@ TEST(ExpectedError, InterpolatesLinearlyInTheLogAndCombinesByRootSumSquare) {
 }
 
 TEST(ExpectedError, CoarserThanTheStudyIsNotCoveredAndFinerGetsTheFinest) {
-  const ErrorModel m = read_error_model(kTable);
+  const ErrorModel m = *read_error_model(kTable);
   CutSettings s = finest(m);
   s.dt_safety = 2 * m.dt_safety.front().value;
   std::string detail;
@@ -138,6 +138,32 @@ TEST(ExpectedError, ABadTableIsNamedWithItsLine) {
   EXPECT_THAT(error_of("ladder,value,force_error\ndt_safety,0.4,0.1\n"),
               HasSubstr("needs two settings or more"));
   EXPECT_THAT(error_of(""), HasSubstr("the header must name"));
+  // The damping and force columns: each damping model's rows are a model of their own.
+  const std::string viscous =
+      "dt_safety,0.4,0.2,viscous,peak\ndt_safety,0.2,0,viscous,peak\n"
+      "fluid_step_ratio,1,0.3,viscous,peak\nfluid_step_ratio,0.3,0,viscous,peak\n"
+      "h_per_diameter,3,0.1,viscous,peak\nh_per_diameter,2,0,viscous,peak\n"
+      "size_scale,1,0.1,viscous,peak\nsize_scale,0.5,0,viscous,peak\n";
+  std::string local_rows;
+  for (std::size_t at = 0, end; (end = good.find('\n', at)) != std::string::npos; at = end + 1)
+    local_rows += good.substr(at, end - at) + ",local,mean\n";
+  const fs::path both = dir / "both.csv";
+  std::ofstream(both) << "ladder,value,force_error,damping,force\n" + local_rows + viscous;
+  const std::optional<ErrorModel> peak = read_error_model(both, "viscous");
+  ASSERT_TRUE(peak.has_value());
+  EXPECT_EQ(peak->force, "peak");
+  EXPECT_EQ(peak->dt_safety.front().force_error, 0.2);
+  EXPECT_EQ(read_error_model(both, "local")->force, "mean");
+  EXPECT_EQ(read_error_model(both, "local")->dt_safety.front().force_error, 0.1);
+  std::vector<std::string> studied;
+  EXPECT_FALSE(read_error_model(both, "none", &studied).has_value());
+  EXPECT_EQ(studied, (std::vector<std::string>{"local", "viscous"}));
+  EXPECT_THAT(error_of("ladder,value,force_error,damping,force\ndt_safety,0.4,0.1,local,max\n"),
+              HasSubstr("table.csv:2: unknown force \"max\": mean or peak"));
+  EXPECT_THAT(error_of("ladder,value,force_error,damping,force\ndt_safety,0.4,0.1,local,mean\n"
+                       "dt_safety,0.2,0,local,peak\n"),
+              HasSubstr("table.csv:3: force \"peak\" where the rows of damping \"local\" before it "
+                        "have \"mean\""));
   const fs::path missing = dir / "none.csv";
   try {
     read_error_model(missing);
@@ -159,7 +185,7 @@ TEST(ExpectedError, TheStartUpLineOfTheDefaultSceneAndWithoutTheTable) {
   const auto line = expected_error_line(loaded.scene, plan, dem_limit_s, stiffness_limit_s,
                                         ROCKCUT_BIN_DIR);
   ASSERT_TRUE(line.has_value());
-  const ErrorModel m = read_error_model(kTable);
+  const ErrorModel m = *read_error_model(kTable);
   const double e = *expected_force_error(m, {0.2, 3 * 0.0705, 2.5, 1.0}, nullptr);
   EXPECT_THAT(*line, HasSubstr("expected error of the mean horizontal force about " +
                                std::to_string(static_cast<int>(std::lround(100 * e))) + " %"));
@@ -170,6 +196,37 @@ TEST(ExpectedError, TheStartUpLineOfTheDefaultSceneAndWithoutTheTable) {
   ASSERT_TRUE(without.has_value());
   EXPECT_THAT(*without, HasSubstr("accuracy   no estimate: "));
   EXPECT_THAT(*without, HasSubstr("share/rockcut/expected_error.csv:0: cannot read"));
+}
+
+TEST(ExpectedError, EachDampingModelHasItsOwnStudyAndForce) {
+  // The dynamic cut under dashpots is read by its peak force, and the study measured that.
+  const auto dynamic = rockcut::scene::load_scene(fs::path(ROCKCUT_SOURCE_DIR) / "cases" /
+                                                  "cutting" /
+                                                  "saturated_reduced_long_viscous.pbtxt");
+  ASSERT_EQ(dynamic.scene.dem().damping().model(), "viscous");
+  const std::optional<ErrorModel> m = read_error_model(kTable, "viscous");
+  ASSERT_TRUE(m.has_value());
+  EXPECT_EQ(m->force, "peak");
+  TimePlan plan;
+  plan.dt_s = 1e-7;
+  plan.coupling_interval = 1;
+  const double dem_limit_s = 5e-7, stiffness_limit_s = 3e-7;
+  const auto line = expected_error_line(dynamic.scene, plan, dem_limit_s, stiffness_limit_s,
+                                        ROCKCUT_BIN_DIR);
+  ASSERT_TRUE(line.has_value());
+  const double h_per_diameter = dynamic.scene.fluid().smoothing_length_m() /
+                                (dynamic.scene.dem().specimen().radius_min_m() +
+                                 dynamic.scene.dem().specimen().radius_max_m());
+  const double e = *expected_force_error(*m, {0.2, 0.0, h_per_diameter, 1.0}, nullptr);
+  EXPECT_THAT(*line, HasSubstr("expected error of the peak horizontal force about " +
+                               std::to_string(static_cast<int>(std::lround(100 * e))) + " %"));
+  // A damping model the study did not measure is named, with those it did.
+  rockcut::Scene undamped = dynamic.scene;
+  undamped.mutable_dem()->mutable_damping()->set_model("none");
+  const auto none = expected_error_line(undamped, plan, dem_limit_s, stiffness_limit_s,
+                                        ROCKCUT_BIN_DIR);
+  ASSERT_TRUE(none.has_value());
+  EXPECT_THAT(*none, HasSubstr("it measured dem.damping.model \"local\", \"viscous\", not \"none\""));
 }
 
 }  // namespace

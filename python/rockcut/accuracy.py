@@ -14,7 +14,7 @@ Four ladders vary one setting each from the defaults:
   N           coupling.interval     local: 14 (the largest the limits allow), 7, 3 (the coupler's
                                     choice, coupling.interval_fraction 0.25 of the largest), 1 (no
                                     lag); viscous: 3 (the largest the limit allows, the coupler's
-                                    choice), 2, 1
+                                    choice there), 1
   h           fluid.smoothing_length_m / mean diameter   1.67, 2.5 (default), 3.33
   size        disc radii x 1.5, 1 (default), 0.75, 0.5, with the bond strengths and h scaled alike
               (a 2D bond's strength acts over about one diameter: see the scene's header)
@@ -48,7 +48,7 @@ STUDIES = {
     "local": {"damping": "local", "scene": "saturated_reduced.pbtxt", "end_time_s": 0.025,
               "force": "mean", "N": (14, 7, 3, 1), "default_N": 3},
     "viscous": {"damping": "viscous", "scene": "saturated_reduced_long_viscous.pbtxt",
-                "end_time_s": 0.04, "force": "peak", "N": (3, 2, 1), "default_N": 3},
+                "end_time_s": 0.04, "force": "peak", "N": (3, 1), "default_N": 3},
 }
 STUDY = STUDIES["local"]
 

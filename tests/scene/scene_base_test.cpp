@@ -240,12 +240,13 @@ TEST(SceneBase, TheRockOfTheCuttingAndCalibrationScenesIsWrittenOnce) {
   // The rock (bonds, contact, density) is written only in cases/rock/; every cutting and
   // calibration scene gets it from there, so that changing the rock edits one file (the coarse
   // discs' strengths, scaled with their size, in default_rock_coarse.pbtxt). A scene cut under
-  // dashpots has the strengths calibrated under them (default_rock_viscous_coarse.pbtxt): its
+  // dashpots has the strengths calibrated under them (default_rock_viscous{,_coarse}.pbtxt): its
   // one base is the local-damping cut it varies, so it writes them, and must write that file's.
   const fs::path cases = fs::path(ROCKCUT_SOURCE_DIR) / "cases";
-  rockcut::Scene rock, coarse, viscous_coarse;
+  rockcut::Scene rock, coarse, viscous, viscous_coarse;
   for (auto [file, scene] :
        {std::pair{"default_rock.pbtxt", &rock}, {"default_rock_coarse.pbtxt", &coarse},
+        {"default_rock_viscous.pbtxt", &viscous},
         {"default_rock_viscous_coarse.pbtxt", &viscous_coarse}}) {
     std::ifstream in(cases / "rock" / file);
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -259,15 +260,16 @@ TEST(SceneBase, TheRockOfTheCuttingAndCalibrationScenesIsWrittenOnce) {
       std::ifstream in(entry.path());
       const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
       const rockcut::Dem dem = load_scene(entry.path()).scene.dem();
-      const bool viscous = dem.damping().model() == "viscous";
+      const bool dashpots = dem.damping().model() == "viscous";
       for (const char* field : {"bonds", "contact", "density_kg_m3"}) {
-        if (viscous && std::string(field) == "bonds") continue;
+        if (dashpots && std::string(field) == "bonds") continue;
         EXPECT_EQ(text.find(std::string("\n  ") + field), std::string::npos)
             << entry.path() << " writes the rock's " << field << ": take it from cases/rock/";
       }
       const bool is_coarse = dem.specimen().radius_max_m() == coarse.dem().specimen().radius_max_m();
-      EXPECT_TRUE(!viscous || is_coarse) << entry.path() << ": no fine rock under dashpots yet";
-      const rockcut::Dem& want = viscous ? viscous_coarse.dem() : is_coarse ? coarse.dem() : rock.dem();
+      const rockcut::Dem& want = dashpots ? (is_coarse ? viscous_coarse.dem() : viscous.dem())
+                                 : is_coarse ? coarse.dem()
+                                             : rock.dem();
       EXPECT_EQ(dem.bonds().shear_strength_n_per_m(), want.bonds().shear_strength_n_per_m())
           << entry.path();
       EXPECT_EQ(dem.bonds().tensile_strength_n_per_m(), want.bonds().tensile_strength_n_per_m())

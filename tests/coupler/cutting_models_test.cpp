@@ -203,6 +203,35 @@ TEST(HyperbaricFlowType, UnderPressureOnTheShearPlaneActsAsCohesion) {
   EXPECT_NEAR(h.shear_angle_deg, m.shear_angle_deg, 1e-6);
 }
 
+TEST(HyperbaricFlowType, BookAppendixCavitatingCoefficients) {
+  // Miedema, The Delft Sand, Clay & Rock Cutting Model, appendices H, I and J (LibreTexts 17.8-17.10):
+  // the cavitating flow type without cohesion, h_b / h_i = 1, tabulated as the shear angle beta
+  // and the coefficients d1 = F_h / (rho_w g (z + 10) w h_i), d2 = F_v,down / (the same), per
+  // blade angle alpha, blade friction delta and internal friction phi. Our dp stands for
+  // rho_w g (z + 10), so dp = 1 Pa, h = h_b = 1 m gives d1 and -d2 directly.
+  struct Row {
+    double alpha, delta, phi, beta, d1, d2;
+  };
+  const Row rows[] = {{15, 15, 32, 37.217, 1.390, 0.409}, {30, 30, 42, 28.859, 2.833, 0.483},
+                      {45, 15, 47, 32.412, 2.365, 0.945}, {60, 15, 42, 28.608, 2.883, 0.465},
+                      {60, 30, 52, 17.208, 8.991, -0.570}};
+  for (const Row& r : rows) {
+    const FlowTypeForce f = hyperbaric_flow_type(0.0, r.phi, r.delta, r.alpha, 1.0, 1.0, 1.0);
+    EXPECT_NEAR(f.shear_angle_deg, r.beta, 0.05) << r.alpha << " " << r.delta << " " << r.phi;
+    EXPECT_NEAR(f.force.horizontal_n_per_m, r.d1, 0.005 * r.d1) << r.alpha << " " << r.phi;
+    EXPECT_NEAR(-f.force.vertical_up_n_per_m, r.d2, 0.01) << r.alpha << " " << r.phi;
+    // The tables are reproduced to their printed precision when degrees become radians with
+    // pi = 3.14 (their d2 at alpha + delta = 90 deg drifts from -cot(60 deg) = -0.5774 with phi,
+    // which exact arithmetic cannot do): the book's rounding, not a different equation.
+    const double k = 3.14 / std::acos(-1.0);
+    const FlowTypeForce b =
+        hyperbaric_flow_type(0.0, r.phi * k, r.delta * k, r.alpha * k, 1.0, 1.0, 1.0);
+    EXPECT_NEAR(b.shear_angle_deg / k, r.beta, 6e-4) << r.alpha << " " << r.delta << " " << r.phi;
+    EXPECT_NEAR(b.force.horizontal_n_per_m, r.d1, 6e-4) << r.alpha << " " << r.phi;
+    EXPECT_NEAR(-b.force.vertical_up_n_per_m, r.d2, 6e-4) << r.alpha << " " << r.phi;
+  }
+}
+
 TEST(HyperbaricFlowType, ForceGrowsWithDepthUpToTheCavitationBound) {
   // The under-pressure at the cavitation bound rises with depth, and so does the force; the blade's
   // under-pressure only adds (through friction on the blade) for delta > 0.

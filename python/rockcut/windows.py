@@ -65,7 +65,7 @@ force_*_mean_n_per_m and pressure_*_mean_pa (tests/python/windows_test.py).
 
 Several OUTs give one table each, in the order given: runs of one scene at several depths stopped
 at the same travel (paper-scale cuts take hours each) are compared window by window, the way
-docs/record/results.md compares its paper-scale runs.
+docs/record/results_local_damping.md compares its paper-scale runs.
 
 Exit status: 0 on success, 2 on bad arguments or a file without a cutting time series.
 """

@@ -90,6 +90,7 @@ class SweepForceFigure(unittest.TestCase):
                 row = {"water_depth_m": depth, "seed": seed, "exit_code": 0,
                        "hydrostatic_pressure_pa": 101325.0 + 1025 * 9.81 * depth,
                        "force_horizontal_mean_n_per_m": 1e5 + depth + seed,
+                       "force_horizontal_peak_n_per_m": 3e5 + depth,
                        "force_vertical_mean_n_per_m": 1e4}
                 for stem, value in PLANTED.items():
                     row[f"analytical_{stem}_force_horizontal_n_per_m"] = value + depth
@@ -110,7 +111,8 @@ class SweepForceFigure(unittest.TestCase):
             expected = [(PLANTED[stem] + depth) / 1e3 for depth in (0, 100, 1000)]
             for got, want in zip(drawn[label], expected):
                 self.assertAlmostEqual(got, want, places=9)
-        self.assertIn("horizontal (resisting the cut)", drawn)
+        self.assertIn("horizontal mean (resisting the cut)", drawn)
+        self.assertEqual(drawn["horizontal peak"], [300.0, 300.1, 301.0])
 
 
 if __name__ == "__main__":

@@ -37,27 +37,28 @@ import re
 import sys
 
 from . import runs
-from .run_data import read_summary, scalar_fields
 from .accuracy_report import markdown, plot
+from .run_data import read_summary, scalar_fields
 from .stats import mean, sem
 
 # Each damping model's study: its scene, its length, the force it is read by, its N ladder and the
 # coupler's own N there (the setting every ladder shares).
 STUDIES = {
-    "local": {"damping": "local", "scene": "saturated_reduced.pbtxt", "end_time_s": 0.025,
+    "local": {"scene": "saturated_reduced.pbtxt", "end_time_s": 0.025,
               "force": "mean", "N": (14, 7, 3, 1), "default_N": 3},
-    "viscous": {"damping": "viscous", "scene": "saturated_reduced_long_viscous.pbtxt",
+    "viscous": {"scene": "saturated_reduced_long_viscous.pbtxt",
                 "end_time_s": 0.04, "force": "peak", "N": (3, 1), "default_N": 3,
                 # Run at N = 3 (half the wall of the scene's N = 1); the N ladder gives the lag.
                 "sets": ["coupling.interval_fraction=1"]},
 }
-STUDY = STUDIES["local"]
+DAMPING = "local"
+STUDY = STUDIES[DAMPING]
 
 
 def use(damping):
     """Makes `damping`'s study the one this module's functions run and read."""
-    global STUDY
-    STUDY = STUDIES[damping]
+    global DAMPING, STUDY
+    DAMPING, STUDY = damping, STUDIES[damping]
 
 
 def scene():
@@ -115,6 +116,8 @@ def ladders(sizes):
 
 
 LADDER_NAMES = ("dt_safety", "N", "h", "size")
+
+
 def default_label(ladder):
     return {"dt_safety": "0.2", "N": str(STUDY["default_N"]), "h": "2.5", "size": "1"}[ladder]
 
@@ -178,7 +181,7 @@ def model_rows(out, table, seeds):
             value = 1.0 if (value + 1) * per_n > 1 else value * per_n
         rows.append({"ladder": MODEL_LADDERS[e["ladder"]], "value": "%.4g" % value,
                      "force_error": "%.4f" % e["error_" + force_key()],
-                     "seeds": e["runs"], "damping": STUDY["damping"], "force": STUDY["force"]})
+                     "seeds": e["runs"], "damping": DAMPING, "force": STUDY["force"]})
     return rows
 
 

@@ -109,7 +109,8 @@ TEST(Cutting, SmallDryCutWritesForcesBreaksAndDamage) {
   EXPECT_EQ(number(summary, "steady_after_m"), 0.004);
   EXPECT_GT(number(summary, "steady_samples"), 0);
   // The rock resists the cut: the mean horizontal force of the rock on the tool points against
-  // the cutting direction. Its size is not checked here (docs/record/results_local_damping.md has the numbers).
+  // the cutting direction. Its size is not checked here (docs/record/results_local_damping.md has
+  // the numbers).
   EXPECT_GT(number(summary, "force_horizontal_mean_n_per_m"), 0.0);
   EXPECT_TRUE(std::isfinite(number(summary, "force_vertical_mean_n_per_m")));
   // Per metre and on the tool width (0.02 m) are the same number up to the one multiplication.

@@ -28,8 +28,8 @@ using clock_type = std::chrono::steady_clock;
 
 }  // namespace
 
-// Fields a resumed run may change: they decide when the run ends, what it records and how it
-// checkpoints, not the physics of a step.
+// Fields a resumed run may change: they decide when the run ends, what it records, how it
+// checkpoints and how it uses the cores, not the physics of a step.
 const std::vector<std::string>& resume_allowed_fields() {
   static const std::vector<std::string> fields = {
       "title",
@@ -39,6 +39,11 @@ const std::vector<std::string>& resume_allowed_fields() {
       "output.checkpoint_interval_s",
       "output.checkpoints_kept",
       "coupling.timeout_s",
+      // How the work is laid out on the cores: the fluid's and the overlap's bits are the same
+      // at any setting; the DEM's sums its forces in another order at another thread count.
+      "coupling.overlap",
+      "fluid.threads",
+      "dem.threads",
   };
   return fields;
 }
@@ -46,7 +51,11 @@ const std::vector<std::string>& resume_allowed_fields() {
 namespace {
 
 // The field at dotted `path` of `message`, cleared; returns its old value as text, or "" when unset.
+// A message left empty by it is cleared too (`--set coupling.overlap=off` on a scene without a
+// `coupling` block adds the block, which is no difference of its own), except `fluid`, whose
+// presence makes a scene coupled: `--set fluid.threads=2` on a dry run stays a difference.
 std::string take_field(google::protobuf::Message& message, const std::string& path) {
+  std::vector<std::pair<google::protobuf::Message*, const google::protobuf::FieldDescriptor*>> chain;
   google::protobuf::Message* m = &message;
   std::size_t start = 0;
   for (;;) {
@@ -59,8 +68,17 @@ std::string take_field(google::protobuf::Message& message, const std::string& pa
       std::string value;
       google::protobuf::TextFormat::PrintFieldValueToString(*m, field, -1, &value);
       reflection->ClearField(m, field);
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+        const auto* r = it->first->GetReflection();
+        if (it->second->name() == "fluid" ||
+            r->GetMessage(*it->first, it->second).ByteSizeLong() != 0) {
+          break;
+        }
+        r->ClearField(it->first, it->second);
+      }
       return value;
     }
+    chain.emplace_back(m, field);
     m = reflection->MutableMessage(m, field);
     start = dot + 1;
   }

@@ -97,8 +97,10 @@ void ModuleLink::receive(wire::Message& reply) {
 }
 
 void ModuleLink::request(wire::Message& request, wire::Message& reply) {
+  const auto start = std::chrono::steady_clock::now();
   send(request);
   receive(reply);
+  request_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 wire::HelloReply ModuleLink::handshake() {

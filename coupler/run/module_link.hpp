@@ -46,6 +46,9 @@ class ModuleLink {
   void send(wire::Message& request);
   void receive(wire::Message& reply);
   void request(wire::Message& request, wire::Message& reply);
+  /// Wall time the coupler has spent in request() on this link: the module's handling, the
+  /// transport, and waiting for the module (e.g. its work after its last reply) [s].
+  double request_s() const { return request_s_; }
 
   /// Ends the session: Shutdown if the module can still answer, then waits for the process or
   /// thread; kills a process that does not end. Never throws.
@@ -58,6 +61,7 @@ class ModuleLink {
 
   LinkSpec spec_;
   std::string label_;
+  double request_s_ = 0.0;
   std::unique_ptr<ChildProcess> process_;
   std::thread thread_;
   std::atomic<bool> thread_done_{false};

@@ -216,7 +216,11 @@ std::vector<Limit> RunModules::fluid_limits() const {
 
 void RunModules::start_loop() {
   dem_.busy.start_loop();
-  if (fluid_) fluid_->busy.start_loop();
+  dem_.request0_s = dem_.link->request_s();
+  if (fluid_) {
+    fluid_->busy.start_loop();
+    fluid_->request0_s = fluid_->link->request_s();
+  }
 }
 
 void RunModules::save_states(Checkpoint& c) {

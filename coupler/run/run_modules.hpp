@@ -21,16 +21,30 @@
 
 namespace rockcut::coupler {
 
-/// A module's handling time (Envelope.busy_s, after_reply_s) at the start of the loop and now.
+/// A module's handling time (Envelope.busy_s, after_reply_s) and its step's phases
+/// (Envelope.phase_times) at the start of the loop and now.
 struct BusyTime {
   double busy0_s = 0.0, busy_s = 0.0, after0_s = 0.0, after_s = 0.0;
+  /// (name, cumulative seconds) in the module's step order; empty until a reply carries them.
+  std::vector<std::pair<std::string, double>> phases, phases0;
   void read(const wire::Envelope& e) {
     busy_s = e.busy_s();
     after_s = e.after_reply_s();
+    if (e.phase_times_size() == 0) return;
+    phases.resize(static_cast<std::size_t>(e.phase_times_size()));
+    for (int k = 0; k < e.phase_times_size(); ++k) {
+      phases[k].first = e.phase_times(k).name();  // same names every time: no allocation
+      phases[k].second = e.phase_times(k).seconds();
+    }
   }
   void start_loop() {
     busy0_s = busy_s;
     after0_s = after_s;
+    phases0 = phases;
+  }
+  /// Seconds in phase k since the loop started.
+  double phase_s(std::size_t k) const {
+    return phases[k].second - (k < phases0.size() ? phases0[k].second : 0.0);
   }
 };
 
@@ -47,6 +61,7 @@ struct RunModule {
   wire::HelloReply hello;
   wire::InitReply init;
   BusyTime busy;
+  double request0_s = 0.0;  ///< link->request_s() at the start of the loop
   // Reused for every message to this module: no allocation of message objects per exchange.
   wire::Message request, reply;
   const std::string& label() const { return link->label(); }

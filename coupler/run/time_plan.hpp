@@ -35,6 +35,8 @@ struct TimePlan {
   unsigned coupling_interval = 1;  ///< N: DEM steps per fluid step (1 for a dry scene)
   std::uint64_t total_steps = 0;
   std::string binding;             ///< which limit or setting fixed dt
+  /// The DEM computes its forces before answering its kinematics (run/overlap_choice.hpp).
+  bool forces_before_reply = false;
   std::vector<std::string> report; ///< one line per limit and choice, printed at start-up
 };
 

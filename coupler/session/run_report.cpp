@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "observers/peclet.hpp"
+#include "session/time_split.hpp"
 #include "wire/protocol.hpp"
 
 namespace rockcut::coupler {
@@ -123,6 +124,7 @@ int finish_run(const RunParts& run, Summary& summary, double wall_s, int code,
   };
   busy("dem", run.modules.dem());
   if (const RunModule* fluid = run.modules.fluid()) busy("fluid", *fluid);
+  report_time_split(run, summary, wall_s);
   // run.h5 and summary.json each on their own: a run.h5 that cannot be closed (a full disk)
   // still gets its summary.json, which then says so.
   const std::filesystem::path out = run.options.out_dir;

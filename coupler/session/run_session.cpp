@@ -5,6 +5,7 @@
 
 #include "observers/run_observers.hpp"
 #include "run/ipc_directory.hpp"
+#include "run/overlap_choice.hpp"
 #include "checkpoint/resume.hpp"
 #include "session/run_report.hpp"
 #include "run/signals.hpp"
@@ -26,6 +27,13 @@ void RunSession::assemble() {
   modules_.start();
   modules_.init();
   plan_ = plan_time(scene_, modules_.dem_limits(), modules_.fluid_limits(), scene_.has_fluid());
+  if (scene_.has_fluid()) {
+    const OverlapChoice overlap =
+        choose_overlap(scene_.coupling().overlap(), options_.transport, scene_.dem().threads(),
+                       scene_.fluid().threads(), usable_cores());
+    plan_.forces_before_reply = !overlap.overlap;
+    plan_.report.push_back(overlap.report);
+  }
   const RunModule* fluid = modules_.fluid();
   const ObserverInputs inputs{modules_.dem().label(),
                               fluid && fluid->provides(std::string(wire::field::kPressure)),

@@ -184,10 +184,12 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
   bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken,
                  settings_.contact.normal_stiffness_pa, settings_.contact.damping_ratio,
                  sums.pairs.viscous_j);
+  if (t == 0) phases_.lap(kBonds);
   if (settings_.contact.normal_stiffness_pa > 0) {
     const auto [c0, c1] = share(contacts_.size(), t, threads);
     contacts_.compute(particles_, settings_.contact, dt, c0, c1, out, sums.pairs);
   }
+  if (t == 0) phases_.lap(kContacts);
   // Thread 0 adds the walls, through its view like its pairs; the ledger is written by this
   // thread alone inside the region (in place, so its sums keep their order of additions).
   if (t == 0 && !walls_.empty()) {
@@ -196,6 +198,7 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
     ledger_.friction_j = walls.friction_j;
     ledger_.viscous_damping_j = walls.viscous_j;
     ledger_.rolling_j = walls.rolling_j;
+    phases_.lap(kWalls);
   }
 }
 
@@ -252,6 +255,7 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
 void DemSystem::kick_drift(double dt, bool kick) {
   const std::size_t n = particles_.size();
   const int threads = settings_.threads;
+  phases_.start();
   start_sums(threads);
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
@@ -264,6 +268,7 @@ void DemSystem::kick_drift(double dt, bool kick) {
   // A bound on how far any disc moved since the rebuild: sum of the largest step lengths.
   max_drift_m_ += std::sqrt(s.vmax2) * dt;
   walls_.move(dt);
+  phases_.lap(kDrift);
 }
 
 void DemSystem::set_prescribed_velocity(double t) {
@@ -283,9 +288,11 @@ void DemSystem::set_prescribed_velocity(double t) {
 void DemSystem::compute_internal_forces() {
   internal_forces_current_ = true;
   const std::size_t n = particles_.size();
+  phases_.start();
   if (has_pairs_ && max_drift_m_ + walls_.displacement_since_rebuild() >
                         0.5 * settings_.skin_m) {
     rebuild_neighbours();
+    phases_.lap(kNeighbours);
   }
   const int threads = has_pairs_ ? settings_.threads : 1;
   start_sums(threads);
@@ -298,16 +305,20 @@ void DemSystem::compute_internal_forces() {
     reset_forces_range(p0, p1);
     if (has_pairs_) {
 #pragma omp barrier
+      if (t == 0) phases_.lap(kDrift);
       pair_forces(t, threads, dt, sums_[t]);
 #pragma omp barrier
+      if (t == 0) phases_.lap(kBarrier);
       buffers_.reduce(particles_, t, p0, p1);
     }
   }
   if (!has_pairs_) return;
   const ThreadSums s = total_sums();
   book(s);
+  phases_.lap(kFinish);
   if (s.any_broken) remove_broken_bonds();
   if (!clamped_.empty()) hold_clamped_groups();
+  phases_.lap(kBreaks);
 }
 
 void DemSystem::remove_broken_bonds() {
@@ -375,6 +386,7 @@ void DemSystem::finish_forces(double kick_dt) {
   const std::size_t n = particles_.size();
   const int threads = settings_.threads;
   if (settings_.local_damping > 0) damping_force_.resize(3 * n);
+  phases_.start();
   start_sums(threads);
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
@@ -384,6 +396,7 @@ void DemSystem::finish_forces(double kick_dt) {
   }
   book(total_sums());
   if (!clamped_.empty()) reset_clamped_velocities();
+  phases_.lap(kFinish);
 }
 
 void DemSystem::step(double dt) {
@@ -416,6 +429,7 @@ void DemSystem::full_step(double dt) {
   // no barrier between them.
   const std::size_t n = particles_.size();
   const int threads = settings_.threads;
+  phases_.start();
   dt_last_ = dt;
   time_s_ += dt;
   ++steps_;
@@ -432,6 +446,7 @@ void DemSystem::full_step(double dt) {
     const auto [p0, p1] = share(n, t, threads);
     drift_range(p0, p1, dt, /*kick=*/true, /*reset_forces=*/true, sums_[t]);
 #pragma omp barrier
+    if (t == 0) phases_.lap(kDrift);
     // Every thread reaches the same decision from the same numbers.
     double v2 = 0.0;
     for (const ThreadSums& s : sums_) v2 = std::max(v2, s.vmax2);
@@ -443,9 +458,11 @@ void DemSystem::full_step(double dt) {
         rebuild_neighbours();
         rebuilt = true;
       }  // implied barrier: the lists are ready for every thread
+      if (t == 0) phases_.lap(kNeighbours);
     }
     pair_forces(t, threads, dt, sums_[t]);
 #pragma omp barrier
+    if (t == 0) phases_.lap(kBarrier);
     buffers_.reduce(particles_, t, p0, p1);
     if (!clamped_.empty()) {
 #pragma omp barrier
@@ -461,8 +478,10 @@ void DemSystem::full_step(double dt) {
   } else {
     max_drift_m_ += std::sqrt(s.vmax2) * dt;
   }
+  phases_.lap(kFinish);
   if (s.any_broken) remove_broken_bonds();
   if (!clamped_.empty()) reset_clamped_velocities();
+  phases_.lap(kBreaks);
   internal_forces_current_ = true;
 }
 

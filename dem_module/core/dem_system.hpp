@@ -14,6 +14,7 @@
 #include "core/energy.hpp"
 #include "core/force_buffers.hpp"
 #include "core/particles.hpp"
+#include "wire/phase_clock.hpp"
 #include "core/membrane_load.hpp"
 #include "core/wall_servo.hpp"
 #include "core/walls.hpp"
@@ -103,6 +104,8 @@ class DemSystem {
   bool in_split_step() const { return in_split_step_; }
   bool internal_forces_current() const { return internal_forces_current_; }
   std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
+  /// Wall time per phase of the step (DemPhase order), measured on the first thread.
+  const wire::PhaseClock& phases() const { return phases_; }
   /// Checkpoint (core/dem_state.cpp): everything that decides the next bit, between two steps.
   void save_state(state::StateArchive& a) const;
   /// Restores a saved state into a system built from the same scene; throws state::StateError
@@ -176,6 +179,13 @@ class DemSystem {
   double time_s_ = 0.0;
   std::uint64_t steps_ = 0;
   std::uint64_t rebuilds_ = 0;
+  // Indices into phases_: drift (and the force reset), neighbour-list rebuilds, the three pair
+  // loops, the wait for the slowest thread after them, reduction and kick, bond breaks.
+  enum DemPhase : std::size_t {
+    kDrift, kNeighbours, kBonds, kContacts, kWalls, kBarrier, kFinish, kBreaks
+  };
+  wire::PhaseClock phases_{
+      {"drift", "neighbours", "bonds", "contacts", "walls", "barrier", "finish", "breaks"}};
   bool in_split_step_ = false;
   bool internal_forces_current_ = false;  // force holds the internal forces at x^{n+1}
   bool has_pairs_ = false;                // any contact law, bonds or walls at all

@@ -212,6 +212,9 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
   if (tripped || !advance.split_last()) return report(reply);
 
   if (advance.steps() > 0) s.begin_step(dt);
+  // Without overlap (Coupling.overlap) the forces at x^{n+N} come now; after_reply then has
+  // nothing to do.
+  if (advance.steps() > 0 && advance.forces_before_reply()) s.compute_internal_forces();
   split_dt_s_ = advance.steps() > 0 ? dt : 0.0;
   wire::Kinematics* k = reply.envelope.mutable_kinematics();
   k->set_time_s(s.time_s());
@@ -245,6 +248,7 @@ void DemService::apply_forces(const wire::Message& request, wire::Message& reply
 
 void DemService::report(wire::Message& reply) {
   const DemSystem& s = *setup_.system;
+  s.phases().write(reply.envelope);
   wire::StepReport* r = reply.envelope.mutable_step_report();
   r->set_time_s(s.time_s());
   r->set_step(s.step_count());

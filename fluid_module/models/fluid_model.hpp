@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "state/state_archive.hpp"
+#include "wire/phase_clock.hpp"
 
 namespace rockcut::fluid {
 
@@ -75,6 +76,8 @@ class FluidModel {
   /// Named scalars of the last step for the time series (FluidResult.scalars; the coupler
   /// prefixes them with "fluid_"). Once per step, never per particle.
   virtual void scalars(std::vector<std::pair<std::string, double>>& out) const { out.clear(); }
+  /// Wall time per phase of the model's step (Envelope.phase_times), or none.
+  virtual const wire::PhaseClock* phases() const { return nullptr; }
   /// Checkpoint: everything that decides the bits of the next steps and that initialise() does
   /// not rebuild from the scene and the static data. Called between steps.
   virtual void save_state(state::StateArchive& archive) const = 0;

@@ -146,7 +146,9 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
   if (!(dt_s >= 0.0) || !std::isfinite(dt_s)) {
     throw std::invalid_argument("fluid: step with dt_s = " + std::to_string(dt_s));
   }
+  phases_.start();
   const Staleness stale = staleness(k.position, k.wall_segments);
+  phases_.lap(kStaleness);
   bool local = false;
   if (stale == Staleness::particles) {
     const bool rebuilt = list_.update(k.position);
@@ -163,12 +165,14 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
     // (which particles the walls seal) is recomputed.
     ++boundary_updates_;
   }
+  phases_.lap(kGeometry);
   if (stale != Staleness::fresh) {
     // On the geometry's positions X' (the current ones after a full update).
     counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
                                 geo_.position, radius_, sides_, boundary_, k.wall_segments);
     walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
   }
+  phases_.lap(kBoundary);
   // The step's coefficients follow the geometry.
   if (step_op_.version() != geo_.version) {
     if (local) {
@@ -177,6 +181,7 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
       step_op_.build(geo_);
     }
   }
+  phases_.lap(kGeometry);
 
   if (dt_s > 0.0) {
     // Volumetric strain rate (eq. 17), then the source term -alpha M d(eps_v)/dt of eq. 14.
@@ -193,6 +198,7 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
     }
     const double am = params_.alpha * params_.bulk_modulus_pa;
     for (std::size_t i = 0; i < n; ++i) source_[i] = storage_source(am, strain_rate_[i]);
+    phases_.lap(kPasses);
     advance(dt_s);
   } else {
     // t = 0: forces of the initial state only; the drained particles take their boundary value.
@@ -205,6 +211,7 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
   if (params_.cavitation) {
     for (double p : pressure_) cavitated_ += at_vapour_pressure(p, params_.p_min_pa);
   }
+  phases_.lap(kAdvance);
 
   if (params_.force_form == ForceForm::adjoint) {
     // The excess pressure acts on share_ (update_share): g_i = A_i (p_i - p_hydro) [N/m].
@@ -212,11 +219,13 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
       area_excess_[i] = share_[i] * (pressure_[i] - params_.p_hydro_pa);
     }
     step_op_.adjoint_force(geo_, area_excess_, force);
+    phases_.lap(kForce);
     return;
   }
   // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].
   gradient(geo_, pressure_, grad_);
   gradient_pressure_force(grad_, area_, force);
+  phases_.lap(kForce);
 }
 
 void PorePressureModel::update_share() {

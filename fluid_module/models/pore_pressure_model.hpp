@@ -59,6 +59,7 @@ class PorePressureModel : public FluidModel {
             std::span<double> force) override;
   void output(const std::string& field, std::vector<double>& values) const override;
   void scalars(std::vector<std::pair<std::string, double>>& out) const override;
+  const wire::PhaseClock* phases() const override { return &phases_; }
   /// The model's diffusion limit, then the pore fluid's stiffness limit (when the DEM is dynamic).
   std::vector<StabilityLimit> limits() const final;
   bool probe(std::span<const double> position, const ProbeBox& box, double& mean_pa,
@@ -131,6 +132,11 @@ class PorePressureModel : public FluidModel {
   /// share_ = phi V_i for the current geometry: the area the excess pressure acts on.
   void update_share();
 
+  // Indices into phases_: the staleness test, the neighbour lists and SP geometry (with the
+  // step's coefficients), the boundary, the passes over the pairs, the pressure's advance, the
+  // force.
+  enum StepPhase : std::size_t { kStaleness, kGeometry, kBoundary, kPasses, kAdvance, kForce };
+  wire::PhaseClock phases_{{"staleness", "geometry", "boundary", "passes", "advance", "force"}};
   double packing_fraction_ = 1.0;
   std::vector<double> walls_at_geometry_;  // wall segments of the current geometry [m]
   std::uint64_t geometry_updates_ = 0;

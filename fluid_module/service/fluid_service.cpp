@@ -158,6 +158,7 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
   guard_not_finite(s.time_s(), k.position, *result);
   reply.add_array(wire::field::kForce, force_, 2);
   if (!s.report()) return;  // nothing records this exchange
+  if (const wire::PhaseClock* phases = m.phases()) phases->write(reply.envelope);
   m.scalars(scalars_);
   for (const auto& [name, value] : scalars_) (*result->mutable_scalars())[name] = value;
   // Pressure nodes: averaged over the particle centres of this step.

@@ -165,8 +165,7 @@ CouplerRun run_coupler(const std::string& scene, const std::vector<std::string>&
   argv.insert(argv.end(), args.begin(), args.end());
   CouplerRun r;
   r.out = dir / "out";
-  std::string out;
-  r.code = run(argv, dir, "coupler", &out, &r.err, timeout);
+  r.code = run(argv, dir, "coupler", &r.out_text, &r.err, timeout);
   return r;
 }
 

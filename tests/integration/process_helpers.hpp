@@ -41,6 +41,7 @@ struct CouplerRun {
   std::filesystem::path out;
   int code = -1;
   std::string err;
+  std::string out_text;  ///< what it printed on stdout
 };
 
 /// Runs `coupler run SCENE --out DIR/out ARGS...` in `dir` to completion (killed after `timeout`).

@@ -217,5 +217,62 @@ TEST(SaturatedCutting, ForcesRidingOnTheNextAdvanceChangeNoBit) {
             hb.doubles("/timeseries/tool_force_x_n_per_m").back());
 }
 
+TEST(SaturatedCutting, TakingTurnsChangesNoBitAndTheWallIsSplitByPhase) {
+  // coupling.overlap "off": the DEM computes its forces before answering its kinematics instead
+  // of while the fluid steps. The same arithmetic in the same order: the same bits.
+  const std::vector<std::string> cut = {"--set", "time.end_time_s=0.003", "--set",
+                                        "output.frame_interval_s=0.003"};
+  std::vector<std::string> on = cut, off = cut;
+  on.insert(on.end(), {"--set", "coupling.overlap=on"});
+  off.insert(off.end(), {"--set", "coupling.overlap=off"});
+  const CouplerRun a = run_small_cut("overlap_on", on);
+  const CouplerRun b = run_small_cut("overlap_off", off);
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(a.err.find("overlap    the DEM's forces overlap the fluid's step (coupling.overlap "
+                       "\"on\""),
+            std::string::npos)
+      << a.err;
+  EXPECT_NE(b.err.find("take turns (coupling.overlap \"off\""), std::string::npos) << b.err;
+  EXPECT_NE(a.out_text.find("time       dem busy"), std::string::npos) << a.out_text;
+  const H5Reader ha(a.out / "run.h5"), hb(b.out / "run.h5");
+  for (const std::string& name : ha.members("/timeseries")) {
+    if (name == "step") continue;
+    EXPECT_TRUE(bit_identical(ha.doubles("/timeseries/" + name), hb.doubles("/timeseries/" + name)))
+        << name;
+  }
+  EXPECT_TRUE(bit_identical(ha.doubles(last_frame(ha) + "/position"),
+                            hb.doubles(last_frame(hb) + "/position")));
+
+  // Where the wall went: each phase non-negative, the phases within the module's busy time, the
+  // DEM's work after its replies gone when it takes turns.
+  for (const CouplerRun* r : {&a, &b}) {
+    const Summary s = coupler::read_summary(r->out / "summary.json");
+    for (const std::string who : {"dem", "fluid"}) {
+      double phases = 0.0;
+      const std::vector<std::string> names =
+          who == "dem" ? std::vector<std::string>{"drift", "neighbours", "bonds", "contacts",
+                                                  "walls", "barrier", "finish", "breaks"}
+                       : std::vector<std::string>{"staleness", "geometry", "boundary", "passes",
+                                                  "advance", "force"};
+      for (const std::string& n : names) {
+        const double v = number(s, who + "_phase_" + n + "_s");
+        EXPECT_GE(v, 0.0) << who << " " << n;
+        phases += v;
+      }
+      EXPECT_GT(phases, 0.0) << who;
+      EXPECT_LE(phases, number(s, who + "_busy_s") * (1 + 1e-9)) << who;
+      EXPECT_GE(number(s, who + "_service_s"), 0.0) << who;
+      EXPECT_GE(number(s, who + "_request_s"), 0.0) << who;
+    }
+    EXPECT_GE(number(s, "coupler_own_s"), 0.0);
+    EXPECT_LE(number(s, "coupler_own_s"), number(s, "wall_time_s"));
+  }
+  EXPECT_GT(number(coupler::read_summary(a.out / "summary.json"), "dem_after_reply_s"), 0.0);
+  // Only the t = 0 exchange's and the recorded steps' trivial after_reply remain.
+  EXPECT_LT(number(coupler::read_summary(b.out / "summary.json"), "dem_after_reply_s"),
+            0.1 * number(coupler::read_summary(a.out / "summary.json"), "dem_after_reply_s"));
+}
+
 }  // namespace
 }  // namespace rockcut::test

@@ -104,7 +104,10 @@ class LocalSweepResumes(unittest.TestCase):
         wall = {"wall_time_s", "particle_steps_per_s", "dem_busy_s", "dem_after_reply_s"}
         for ra, rb in zip(a, b):
             for key in ra:
-                if key not in wall:
+                # The wall-time split (coupler/session/time_split.hpp) measures the machine too.
+                split = (key == "coupler_own_s" or "_phase_" in key or key.endswith("_service_s")
+                         or key.endswith("_request_s"))
+                if key not in wall and not split:
                     self.assertEqual(ra[key], rb[key], key)
         # The completed run was left alone.
         self.assertEqual(os.path.getmtime(os.path.join(first, "run.h5")), first_written)

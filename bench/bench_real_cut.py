@@ -102,7 +102,7 @@ def cached_state(coupler, scene, depth, at_mm, cache):
     end = cut_time_s(text, at_mm * 1e-3)
     version = call([coupler, "--version"]).strip()
     key = hashlib.sha256(("%s\n%s\n%.12g" % (version, text, end)).encode()).hexdigest()[:16]
-    out = os.path.join(cache, "%s_%gm_%gmm_%s" % (os.path.basename(scene)[:-7], depth, at_mm, key))
+    out = os.path.join(cache, "%s_%gm_%gmm_%s" % (os.path.basename(scene)[:-len(".pbtxt")], depth, at_mm, key))
     if not os.path.exists(os.path.join(out, "summary.json")):
         print("making the state at %g mm of %s at %g m (once; kept in %s)" %
               (at_mm, scene, depth, out), flush=True)
@@ -180,7 +180,7 @@ def main():
     ap.add_argument("--damping", choices=["viscous", "local"], default="viscous")
     ap.add_argument("--at-mm", type=float, default=40.0)
     ap.add_argument("--stretch-mm", type=float, default=0.3)
-    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--repeat", type=int, default=3, help="0: make the cached states only")
     ap.add_argument("--variant", type=parse_variant, action="append", default=[])
     ap.add_argument("--cache", default=default_cache())
     ap.add_argument("--json", help="write every run's figures here")
@@ -208,6 +208,8 @@ def main():
                     results.append(dict(row, scene=scene, depth_m=depth, variant=v))
                     print("%-9s %6g %-8s %s" % (name, depth, v, describe(row)), flush=True)
             for v, rs in rows.items():
+                if not rs:  # --repeat 0: the states only
+                    continue
                 print("%-9s %6g %-8s median %.3f ms/step over %d" % (
                     name, depth, v, statistics.median(r["ms_per_step"] for r in rs), len(rs)))
     if args.json:

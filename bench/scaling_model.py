@@ -1,0 +1,114 @@
+#!/usr/bin/python3
+"""What a cut's step would cost on more cores: a model fitted to 1- and 2-thread stretches.
+
+  bench/scaling_model.py RESULTS.json [--one t1] [--two t2] [--cores 2,4,16,64]
+
+RESULTS.json is what `bench/bench_real_cut.py --json` writes, with one variant on one thread per
+module and one on two, e.g.
+  --variant t1:dem.threads=1,fluid.threads=1,coupling.overlap=off \
+  --variant t2:dem.threads=2,fluid.threads=2,coupling.overlap=off
+(the modules taking turns on all cores, as they would on C cores with C threads each).
+
+Per scene and depth, per module phase p (medians over the repeats, per step):
+  T_p(t) = s_p + q_p / t,   q_p = 2 (T_p(1) - T_p(2)),   s_p = T_p(1) - q_p
+(Amdahl's law from two points; a phase that got slower on two threads has q_p < 0, and is taken
+as serial with s_p = T_p(2), its two-thread cost, which then holds its synchronisation). The
+modules' service work and the transport are taken as serial (copies of the arrays, one thread),
+the barriers as growing with log2(t) from their two-thread cost. The step on C cores is the
+DEM's plus the fluid's (they take turns on all C cores) plus the serial rest. The model ignores
+memory bandwidth, which caps the pair loops well before 64 cores: its speed-ups are upper
+bounds.
+"""
+import argparse
+import json
+import math
+import statistics
+import sys
+
+
+def fit(t1, t2):
+    """(serial, parallel) per step from the 1- and 2-thread costs of a phase."""
+    q = 2.0 * (t1 - t2)
+    if q <= 0:
+        return t2, 0.0
+    return t1 - q, q
+
+
+def predict(serial, parallel, threads):
+    return serial + parallel / threads
+
+
+def per_step(rows):
+    """Median per-step seconds of every phase, the service and the rest, over `rows`."""
+    out = {}
+    keys = set()
+    for r in rows:
+        for who, phases in r["phases"].items():
+            keys.update((who, p) for p in phases)
+    for who, p in sorted(keys):
+        out["%s.%s" % (who, p)] = statistics.median(r["phases"][who][p] / r["steps"] for r in rows)
+    out["service"] = statistics.median(r["service_s"] / r["steps"] for r in rows)
+    # Transport, waits and the coupler's own work: what the modules' busy time leaves.
+    out["rest"] = statistics.median(
+        (r["wall_s"] - sum(r.get(w + "_busy_s", 0.0) for w in ("dem", "fluid"))) / r["steps"]
+        for r in rows)
+    return out
+
+
+def model(one, two):
+    """{part: (serial, parallel, log2 coefficient)} from per-step costs at 1 and 2 threads."""
+    parts = {}
+    for key in two:
+        a, b = one.get(key, 0.0), two[key]
+        if key.endswith(".barrier"):
+            parts[key] = (0.0, 0.0, b)       # b log2(t): nothing on one thread
+        elif key in ("service", "rest"):
+            parts[key] = (max(b, 0.0), 0.0, 0.0)
+        else:
+            s, q = fit(a, b)
+            parts[key] = (s, q, 0.0)
+    return parts
+
+
+def step_cost(parts, threads):
+    return sum(s + q / threads + g * math.log2(threads) for s, q, g in parts.values())
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("results")
+    ap.add_argument("--one", default="t1")
+    ap.add_argument("--two", default="t2")
+    ap.add_argument("--cores", default="2,4,16,64")
+    args = ap.parse_args()
+    with open(args.results) as f:
+        results = json.load(f)
+    cores = [int(c) for c in args.cores.split(",")]
+    groups = {}
+    for r in results:
+        groups.setdefault((r["scene"], r["depth_m"]), {}).setdefault(r["variant"], []).append(r)
+    if not groups:
+        sys.exit("scaling_model: no runs in %s" % args.results)
+    for (scene, depth), variants in sorted(groups.items()):
+        if args.one not in variants or args.two not in variants:
+            print("%s at %g m: no %s and %s runs" % (scene, depth, args.one, args.two))
+            continue
+        one, two = per_step(variants[args.one]), per_step(variants[args.two])
+        parts = model(one, two)
+        base = step_cost(parts, 1)
+        print("%s at %g m: %.3f ms/step on 1 thread (measured %.3f), %.3f on 2 (measured %.3f)" % (
+            scene, depth, 1e3 * base,
+            1e3 * statistics.median(r["wall_s"] / r["steps"] for r in variants[args.one]),
+            1e3 * step_cost(parts, 2),
+            1e3 * statistics.median(r["wall_s"] / r["steps"] for r in variants[args.two])))
+        serial = sum(s for s, _, _ in parts.values())
+        print("  serial part %.3f ms/step (service %.3f, rest %.3f); parallel %.3f ms/step" % (
+            1e3 * serial, 1e3 * parts["service"][0], 1e3 * parts["rest"][0],
+            1e3 * sum(q for _, q, _ in parts.values())))
+        for c in cores:
+            t = step_cost(parts, c)
+            print("  %3d cores: %.3f ms/step, %.1f times one thread" % (c, 1e3 * t, base / t))
+
+
+if __name__ == "__main__":
+    main()

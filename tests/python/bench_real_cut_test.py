@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+"""bench/bench_real_cut.py and bench/scaling_model.py: the cached state, the stretch's figures and
+the scaling model, run as a user runs them (on the reduced scenes, in seconds).
+
+  tests/python/bench_real_cut_test.py --coupler build/bin/coupler --tmp DIR
+"""
+import json
+import math
+import os
+import shutil
+import subprocess
+import unittest
+
+import harness  # tests/python/harness.py: the command line
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import scaling_model  # bench/ is on PYTHONPATH (tests/CMakeLists.txt)
+
+
+class ScalingModel(unittest.TestCase):
+    def test_amdahl_from_two_points(self):
+        # 1 ms serial and 4 ms parallel: 5 ms on one thread, 3 ms on two.
+        s, q = scaling_model.fit(5e-3, 3e-3)
+        self.assertAlmostEqual(s, 1e-3)
+        self.assertAlmostEqual(q, 4e-3)
+        self.assertAlmostEqual(scaling_model.predict(s, q, 16), 1e-3 + 4e-3 / 16)
+        # Slower on two threads: serial at its two-thread cost.
+        self.assertEqual(scaling_model.fit(1e-3, 1.2e-3), (1.2e-3, 0.0))
+
+    def test_model_of_a_step(self):
+        one = {"dem.bonds": 4e-3, "dem.barrier": 0.0, "service": 1e-4, "rest": 5e-5}
+        two = {"dem.bonds": 2e-3, "dem.barrier": 1e-4, "service": 1e-4, "rest": 5e-5}
+        parts = scaling_model.model(one, two)
+        # Perfectly parallel bonds, the barrier b log2(t), the service and the rest serial.
+        self.assertAlmostEqual(scaling_model.step_cost(parts, 1), 4e-3 + 1.5e-4)
+        self.assertAlmostEqual(scaling_model.step_cost(parts, 2), 2e-3 + 1e-4 + 1.5e-4)
+        self.assertAlmostEqual(scaling_model.step_cost(parts, 64),
+                               4e-3 / 64 + 1e-4 * math.log2(64) + 1.5e-4)
+
+
+class RealCut(unittest.TestCase):
+    def test_the_state_is_made_once_and_the_stretch_split(self):
+        tmp = os.path.join(ARGS.tmp, "bench_real_cut")
+        shutil.rmtree(tmp, ignore_errors=True)
+        cache, out = os.path.join(tmp, "cache"), os.path.join(tmp, "runs.json")
+        argv = ["/usr/bin/python3", os.path.join(ROOT, "bench", "bench_real_cut.py"),
+                "--coupler", ARGS.coupler, "--scale", "reduced", "--damping", "local",
+                "--scene", "saturated", "--depth", "0", "--at-mm", "2", "--stretch-mm", "0.5",
+                "--repeat", "1", "--cache", cache, "--json", out,
+                "--variant", "t1:dem.threads=1,fluid.threads=1,coupling.overlap=off",
+                "--variant", "t2:dem.threads=2,fluid.threads=2,coupling.overlap=off"]
+        first = subprocess.run(argv, capture_output=True, text=True, timeout=240)
+        self.assertEqual(first.returncode, 0, first.stdout + first.stderr)
+        self.assertIn("making the state at 2 mm of cases/cutting/saturated_reduced_long.pbtxt",
+                      first.stdout)
+        self.assertEqual(len(os.listdir(cache)), 1)
+        second = subprocess.run(argv, capture_output=True, text=True, timeout=240)
+        self.assertEqual(second.returncode, 0, second.stdout + second.stderr)
+        self.assertNotIn("making the state", second.stdout)  # the cached one
+        with open(out) as f:
+            runs = json.load(f)
+        self.assertEqual(sorted(r["variant"] for r in runs), ["t1", "t2"])
+        for r in runs:
+            # 0.5 mm at 1 m/s: 0.5 ms of the cut, thousands of steps.
+            self.assertGreater(r["steps"], 1000)
+            self.assertAlmostEqual(r["ms_per_step"], 1e3 * r["wall_s"] / r["steps"])
+            self.assertGreater(r["phases"]["dem"]["bonds"], 0.0)
+            self.assertGreater(r["phases"]["fluid"]["passes"], 0.0)
+            # Busy time within the stretch's wall, every part non-negative.
+            self.assertLessEqual(r["dem_busy_s"] + r["fluid_busy_s"], r["wall_s"] * 1.001)
+            self.assertGreaterEqual(r["own_s"], 0.0)
+        model = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "bench", "scaling_model.py"),
+                                out, "--cores", "2,64"], capture_output=True, text=True)
+        self.assertEqual(model.returncode, 0, model.stderr)
+        self.assertIn("64 cores:", model.stdout)
+
+
+if __name__ == "__main__":
+    ARGS, rest = harness.arguments()
+    harness.run(rest)

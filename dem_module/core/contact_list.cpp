@@ -19,6 +19,12 @@ std::uint64_t key(std::uint32_t i, std::uint32_t j) {
 
 void ContactList::rebuild(const Particles& p, const BondSet& bonds, double skin_m,
                           CellGrid& grid) {
+  begin_rebuild(p, skin_m, grid, 1);
+  search(p, bonds, skin_m, grid, 0, 1);
+  end_rebuild();
+}
+
+void ContactList::begin_rebuild(const Particles& p, double skin_m, CellGrid& grid, int threads) {
   // Remember the history of pairs that carry a tangential force.
   old_keys_.clear();
   old_shear_.clear();
@@ -34,30 +40,56 @@ void ContactList::rebuild(const Particles& p, const BondSet& bonds, double skin_
       old_rolling_.push_back(rolling_moment_[k]);
     }
   }
-
   double r_max = 0.0;
   for (double r : p.radius) r_max = std::max(r_max, r);
   grid.build(p.position, 2.0 * r_max + skin_m);
+  found_.resize(static_cast<std::size_t>(threads));
+}
+
+void ContactList::search(const Particles& p, const BondSet& bonds, double skin_m,
+                         const CellGrid& grid, int t, int threads) {
+  Found& f = found_[static_cast<std::size_t>(t)];
+  f.i.clear();
+  f.j.clear();
+  f.shear.clear();
+  f.rolling.clear();
+  const double* x = p.position.data();
+  const double* r = p.radius.data();
+  // The particles in contiguous shares, each in ascending order: joined in thread order, the
+  // pairs come in rebuild()'s order (particle by particle, as for_each_near_pair visits them).
+  const std::size_t n = p.size();
+  const std::size_t begin = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
+  const std::size_t end = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads);
+  for (std::size_t a = begin; a < end; ++a) {
+    grid.for_each_neighbour_of(static_cast<std::uint32_t>(a), [&](std::uint32_t a0,
+                                                                   std::uint32_t b) {
+      const double dx = x[2 * b] - x[2 * a0], dy = x[2 * b + 1] - x[2 * a0 + 1];
+      const double reach = r[a0] + r[b] + skin_m;
+      if (dx * dx + dy * dy > reach * reach) return;
+      const std::uint32_t lo = std::min(a0, b), hi = std::max(a0, b);
+      if (bonds.bonded(lo, hi)) return;
+      f.i.push_back(lo);
+      f.j.push_back(hi);
+      const auto it = std::lower_bound(old_keys_.begin(), old_keys_.end(), key(lo, hi));
+      const bool known = it != old_keys_.end() && *it == key(lo, hi);
+      const auto at = static_cast<std::size_t>(it - old_keys_.begin());
+      f.shear.push_back(known ? old_shear_[at] : 0.0);
+      f.rolling.push_back(known ? old_rolling_[at] : 0.0);
+    });
+  }
+}
+
+void ContactList::end_rebuild() {
   i_.clear();
   j_.clear();
   shear_force_.clear();
   rolling_moment_.clear();
-  const double* x = p.position.data();
-  const double* r = p.radius.data();
-  grid.for_each_near_pair([&](std::uint32_t a, std::uint32_t b) {
-    const double dx = x[2 * b] - x[2 * a], dy = x[2 * b + 1] - x[2 * a + 1];
-    const double reach = r[a] + r[b] + skin_m;
-    if (dx * dx + dy * dy > reach * reach) return;
-    const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
-    if (bonds.bonded(lo, hi)) return;
-    i_.push_back(lo);
-    j_.push_back(hi);
-    const auto it = std::lower_bound(old_keys_.begin(), old_keys_.end(), key(lo, hi));
-    const bool known = it != old_keys_.end() && *it == key(lo, hi);
-    const auto at = static_cast<std::size_t>(it - old_keys_.begin());
-    shear_force_.push_back(known ? old_shear_[at] : 0.0);
-    rolling_moment_.push_back(known ? old_rolling_[at] : 0.0);
-  });
+  for (const Found& f : found_) {
+    i_.insert(i_.end(), f.i.begin(), f.i.end());
+    j_.insert(j_.end(), f.j.begin(), f.j.end());
+    shear_force_.insert(shear_force_.end(), f.shear.begin(), f.shear.end());
+    rolling_moment_.insert(rolling_moment_.end(), f.rolling.begin(), f.rolling.end());
+  }
 }
 
 void ContactList::add_pairs(const std::vector<std::uint32_t>& pairs) {

@@ -22,6 +22,14 @@ class ContactList {
   /// Lists every unbonded pair closer than r_i + r_j + skin, keeping the tangential force of pairs
   /// that were already listed.
   void rebuild(const Particles& p, const BondSet& bonds, double skin_m, CellGrid& grid);
+  /// The same in three parts, for a team of threads: begin_rebuild (one thread: the history
+  /// sorted, the grid built), search (every thread t of `threads`: the pairs of its share of the
+  /// particles, into its own buffer), end_rebuild (one thread: the buffers joined in thread order).
+  /// The list comes out in the order rebuild() gives, at any thread count.
+  void begin_rebuild(const Particles& p, double skin_m, CellGrid& grid, int threads);
+  void search(const Particles& p, const BondSet& bonds, double skin_m, const CellGrid& grid,
+              int t, int threads);
+  void end_rebuild();
   /// Adds the pairs of freshly broken bonds (interleaved i, j): they may collide from now on.
   void add_pairs(const std::vector<std::uint32_t>& pairs);
 
@@ -51,6 +59,11 @@ class ContactList {
   std::vector<std::uint64_t> old_keys_;
   std::vector<double> old_shear_, old_rolling_;
   std::vector<std::uint32_t> order_;
+  struct Found {  // one thread's pairs in search()
+    std::vector<std::uint32_t> i, j;
+    std::vector<double> shear, rolling;
+  };
+  std::vector<Found> found_;
 };
 
 }  // namespace rockcut::dem

@@ -46,48 +46,66 @@ DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet b
 }
 
 void DemSystem::rebuild_neighbours() {
-  bonds_.refresh_partners(particles_.size());
-  if (settings_.contact.normal_stiffness_pa > 0) {
-    contacts_.rebuild(particles_, bonds_, settings_.skin_m, grid_);
+  const int threads = settings_.threads;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  rebuild_neighbours_in_team(threads > 1 ? thread_id() : 0, threads);
+}
+
+void DemSystem::rebuild_neighbours_in_team(int t, int threads) {
+  const bool contacts = settings_.contact.normal_stiffness_pa > 0;
+#pragma omp single
+  {
+    bonds_.refresh_partners(particles_.size());
+    if (contacts) contacts_.begin_rebuild(particles_, settings_.skin_m, grid_, threads);
+  }  // implied barrier: the grid and the history are ready
+  if (contacts) contacts_.search(particles_, bonds_, settings_.skin_m, grid_, t, threads);
+#pragma omp barrier
+#pragma omp single
+  {
+    if (contacts) contacts_.end_rebuild();
+    if (!walls_.empty()) walls_.rebuild(particles_, settings_.skin_m);
+    max_drift_m_ = 0.0;
+    ++rebuilds_;
+    buffers_.resize(threads, particles_.size());
   }
-  if (!walls_.empty()) walls_.rebuild(particles_, settings_.skin_m);
-  max_drift_m_ = 0.0;
-  ++rebuilds_;
-  update_force_windows();
+  force_window(t, threads);
+#pragma omp barrier
 }
 
 void DemSystem::update_force_windows() {
   const int threads = settings_.threads;
-  const std::size_t n = particles_.size();
-  buffers_.resize(threads, n);
+  buffers_.resize(threads, particles_.size());
+  for (int t = 0; t < threads; ++t) force_window(t, threads);
+}
+
+void DemSystem::force_window(int t, int threads) {
   if (threads < 2) return;
-  for (int t = 0; t < threads; ++t) {
-    const auto [p0, p1] = share(n, t, threads);
-    std::size_t lo = n, hi = 0;
-    auto note = [&, p0 = p0, p1 = p1](std::uint32_t i) {  // clang 14 captures no structured binding
-      if (i < p0 || i >= p1) {
-        lo = std::min<std::size_t>(lo, i);
-        hi = std::max<std::size_t>(hi, std::size_t(i) + 1);
-      }
-    };
-    // The same shares as pair_forces().
-    const auto [b0, b1] = share(bonds_.size(), t, threads);
-    for (std::size_t k = b0; k < b1; ++k) {
-      note(bonds_.first(k));
-      note(bonds_.second(k));
+  const std::size_t n = particles_.size();
+  const auto [p0, p1] = share(n, t, threads);
+  std::size_t lo = n, hi = 0;
+  auto note = [&, p0 = p0, p1 = p1](std::uint32_t i) {  // clang 14 captures no structured binding
+    if (i < p0 || i >= p1) {
+      lo = std::min<std::size_t>(lo, i);
+      hi = std::max<std::size_t>(hi, std::size_t(i) + 1);
     }
-    if (settings_.contact.normal_stiffness_pa > 0) {
-      const auto [c0, c1] = share(contacts_.size(), t, threads);
-      for (std::size_t k = c0; k < c1; ++k) {
-        note(contacts_.first(k));
-        note(contacts_.second(k));
-      }
-    }
-    if (t == 0) {
-      for (std::uint32_t i : walls_.listed_particles()) note(i);
-    }
-    buffers_.set_window(t, lo, hi);
+  };
+  // The same shares as pair_forces().
+  const auto [b0, b1] = share(bonds_.size(), t, threads);
+  for (std::size_t k = b0; k < b1; ++k) {
+    note(bonds_.first(k));
+    note(bonds_.second(k));
   }
+  if (settings_.contact.normal_stiffness_pa > 0) {
+    const auto [c0, c1] = share(contacts_.size(), t, threads);
+    for (std::size_t k = c0; k < c1; ++k) {
+      note(contacts_.first(k));
+      note(contacts_.second(k));
+    }
+  }
+  if (t == 0) {
+    for (std::uint32_t i : walls_.listed_particles()) note(i);
+  }
+  buffers_.set_window(t, lo, hi);
 }
 
 ThreadSums DemSystem::total_sums() const {
@@ -453,12 +471,11 @@ void DemSystem::full_step(double dt) {
     // The split step's test with its order of additions (kick_drift, compute_internal_forces).
     const double drift_m = drift_before_m + std::sqrt(v2) * dt;
     if (has_pairs_ && drift_m + walls_moved_m > 0.5 * settings_.skin_m) {
-#pragma omp single
-      {
-        rebuild_neighbours();
+      rebuild_neighbours_in_team(t, threads);  // ends with a barrier: the lists are ready
+      if (t == 0) {
         rebuilt = true;
-      }  // implied barrier: the lists are ready for every thread
-      if (t == 0) phases_.lap(kNeighbours);
+        phases_.lap(kNeighbours);
+      }
     }
     pair_forces(t, threads, dt, sums_[t]);
 #pragma omp barrier

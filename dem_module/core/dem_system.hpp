@@ -148,6 +148,11 @@ class DemSystem {
   /// Copies the fluid force into the held external force.
   void hold_external_force(std::span<const double> external);
   void rebuild_neighbours();
+  /// The same, called by every thread t of a team of `threads` (inside a parallel region): the
+  /// contact search and the force windows shared out, the rest on one thread.
+  void rebuild_neighbours_in_team(int t, int threads);
+  /// Thread t's window of particles its pair loops touch outside its own share (ForceBuffers).
+  void force_window(int t, int threads);
   /// Sizes the force buffers and sets each thread's window of foreign particles from its share of
   /// the pair lists: after every change of the lists (rebuild, removed bonds).
   void update_force_windows();

@@ -139,10 +139,16 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
                                   std::to_string(k.position.size() / 2) + " positions, Init had " +
                                   std::to_string(previous_position_.size() / 2));
     }
-    for (std::size_t i = 0; i < displacement_.size(); ++i) {
-      displacement_[i] = k.position[i] - previous_position_[i];
+    // One pass on the model's threads (a per-element difference: the same bits at any count).
+    const double* x = k.position.data();
+    double* x0 = previous_position_.data();
+    double* d = displacement_.data();
+    const auto count = static_cast<std::ptrdiff_t>(displacement_.size());
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      d[i] = x[i] - x0[i];
+      x0[i] = x[i];
     }
-    std::copy(k.position.begin(), k.position.end(), previous_position_.begin());
     k.displacement = displacement_;
   } else if (contains(needs_, wire::field::kDisplacement)) {
     k.displacement = request.array(wire::field::kDisplacement, 2, n);

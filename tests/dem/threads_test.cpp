@@ -120,5 +120,37 @@ TEST(Threads, OneRegionStepEqualsTheSplitStepBitForBit) {
   }
 }
 
+TEST(Threads, ANeighbourRebuildSharedOutListsThePairsInTheSerialOrder) {
+  // The contact search runs on every thread of the team, each over its share of the particles,
+  // and the shares are joined in thread order: the list (and so the order of the force sums)
+  // must be the one rebuild() gives on one thread, at any thread count.
+  Particles p = test::hex_block(30, 20, 1e-3);
+  std::mt19937_64 rng(5);
+  for (double& x : p.position) x += 2e-5 * ((rng() >> 11) * 0x1.0p-53 - 0.5);
+  BondSet bonds = test::bond_all_touching(p, {1e10, 2.5e10, 2e3, 4e3});
+  bonds.refresh_partners(p.size());
+  const double skin_m = 2e-4;
+  CellGrid grid;
+  ContactList serial;
+  serial.rebuild(p, bonds, skin_m, grid);
+  ASSERT_GT(serial.size(), 100u) << "the test needs unbonded pairs within the skin";
+  for (int threads : {2, 3, 7}) {
+    ContactList shared;
+    CellGrid g;
+    shared.begin_rebuild(p, skin_m, g, threads);
+    for (int t = threads - 1; t >= 0; --t) shared.search(p, bonds, skin_m, g, t, threads);
+    shared.end_rebuild();
+    ASSERT_EQ(shared.size(), serial.size()) << threads;
+    for (std::size_t k = 0; k < serial.size(); ++k) {
+      ASSERT_EQ(shared.first(k), serial.first(k)) << threads << " threads, pair " << k;
+      ASSERT_EQ(shared.second(k), serial.second(k)) << threads << " threads, pair " << k;
+    }
+  }
+  // And a system stepping on three threads rebuilds its lists as it goes.
+  DemSystem many = loaded_block(3);
+  run(many);
+  EXPECT_GT(many.neighbour_rebuilds(), 1u);
+}
+
 }  // namespace
 }  // namespace rockcut::dem

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "core/bonds.hpp"
 #include "core/cell_grid.hpp"
@@ -25,20 +24,24 @@ void ContactList::rebuild(const Particles& p, const BondSet& bonds, double skin_
 }
 
 void ContactList::begin_rebuild(const Particles& p, double skin_m, CellGrid& grid, int threads) {
-  // Remember the history of pairs that carry a tangential force.
+  // Remember the history of pairs that carry a tangential force, sorted by pair for the search's
+  // lookups (a pair is listed once, so the order is unique). Only those pairs are sorted, as
+  // contiguous records.
+  history_.clear();
+  for (std::size_t k = 0; k < i_.size(); ++k) {
+    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0) {
+      history_.push_back({key(i_[k], j_[k]), shear_force_[k], rolling_moment_[k]});
+    }
+  }
+  std::sort(history_.begin(), history_.end(),
+            [](const History& a, const History& b) { return a.key < b.key; });
   old_keys_.clear();
   old_shear_.clear();
-  order_.resize(i_.size());
-  std::iota(order_.begin(), order_.end(), 0u);
-  std::sort(order_.begin(), order_.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return key(i_[a], j_[a]) < key(i_[b], j_[b]); });
   old_rolling_.clear();
-  for (std::uint32_t k : order_) {
-    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0) {
-      old_keys_.push_back(key(i_[k], j_[k]));
-      old_shear_.push_back(shear_force_[k]);
-      old_rolling_.push_back(rolling_moment_[k]);
-    }
+  for (const History& h : history_) {
+    old_keys_.push_back(h.key);
+    old_shear_.push_back(h.shear);
+    old_rolling_.push_back(h.rolling);
   }
   double r_max = 0.0;
   for (double r : p.radius) r_max = std::max(r_max, r);

@@ -58,7 +58,11 @@ class ContactList {
   // Rebuild scratch, kept to avoid allocating in steady state.
   std::vector<std::uint64_t> old_keys_;
   std::vector<double> old_shear_, old_rolling_;
-  std::vector<std::uint32_t> order_;
+  struct History {
+    std::uint64_t key;
+    double shear, rolling;
+  };
+  std::vector<History> history_;
   struct Found {  // one thread's pairs in search()
     std::vector<std::uint32_t> i, j;
     std::vector<double> shear, rolling;

@@ -47,11 +47,6 @@ int validate(const fs::path& scene_path, const std::vector<std::string>& overrid
 }  // namespace
 
 int main(int argc, char** argv) {
-  // The module processes this coupler starts (transport ipc) share the cores, so their idle
-  // OpenMP threads sleep instead of spinning (docs/performance.md, "Threads"). libgomp reads the
-  // variable before main, so the coupler's own teams (inproc) keep libgomp's default. An explicit
-  // OMP_WAIT_POLICY or GOMP_SPINCOUNT in the environment still wins.
-  setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
   rockcut::coupler::h5::keep_library_out_of_exit();
   rockcut::wire::tune_allocator_for_bulk_frames();
   CLI::App app{"rockcut coupler: runs discrete-element rock cutting coupled to a pore-pressure "

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <string_view>
 
+#include "process/module_environment.hpp"
 #include "run/ipc_directory.hpp"
 #include "run/reply_checks.hpp"
 #include "wire/init_parts.hpp"
@@ -117,6 +118,9 @@ void RunModules::start() {
   // Once per ipc run, before its modules start: modules killed together with an earlier coupler
   // (SIGKILL) could not unlink their shared memory.
   if (options_.transport == Transport::ipc) wire::remove_orphaned_shared_segments();
+  // How the modules' idle threads wait (libgomp reads it when a module starts; the coupler's own
+  // teams, inproc, keep the default it read before main).
+  prepare_module_environment(scene.has_fluid());
   dem_.link = std::make_unique<ModuleLink>(
       *context_, spec_for(wire::MODULE_KIND_DEM, scene.dem().executable(), "dem_module",
                           options_.dem_endpoint));

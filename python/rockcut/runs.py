@@ -79,10 +79,13 @@ def default_jobs(scene, sets=(), coupler_path=None):
 def side_by_side(jobs):
     """Sets the environment for `jobs` runs at a time. Runs side by side must not poll for a reply
     before sleeping (proto/wire/spin_wait.hpp): with more runs than cores the pollers starve each
-    other. An explicit ROCKCUT_WIRE_SPIN_US still wins. The coupler itself sets OMP_WAIT_POLICY
-    for its modules (coupler/cli/main.cpp)."""
+    other; nor may their OpenMP threads spin, which the coupler lets a dry run's DEM do when it
+    has the cores to itself (coupler/process/module_environment.hpp). Explicit
+    ROCKCUT_WIRE_SPIN_US and OMP_WAIT_POLICY still win."""
     if jobs > 1:
         os.environ.setdefault("ROCKCUT_WIRE_SPIN_US", "0")
+        if "GOMP_SPINCOUNT" not in os.environ:
+            os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
 def command(scene, out, sets=(), coupler_path=None, transport=None):

@@ -119,6 +119,11 @@ def stretch(coupler, state, text, at_mm, stretch_mm, sets):
     """Continues a copy of `state` for stretch_mm; the stretch's figures from its summary.json."""
     with open(os.path.join(state, "summary.json")) as f:
         before = json.load(f)
+    # A resume starts from the newest checkpoint, which may lie before the run's end (a dry run's
+    # last Advance is not cut at its checkpoint): its step is in its name.
+    before["steps"] = max(int(re.match(r"checkpoint_(\d+)\.h5$", name).group(1))
+                          for name in os.listdir(os.path.join(state, "checkpoints"))
+                          if re.match(r"checkpoint_(\d+)\.h5$", name))
     with tempfile.TemporaryDirectory(prefix="rockcut-bench-cut-") as tmp:
         run = os.path.join(tmp, "run")
         shutil.copytree(state, run)

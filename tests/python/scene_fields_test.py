@@ -5,6 +5,7 @@ scene (runs.effective_scene: the bases merged).
 
   tests/python/scene_fields_test.py --coupler build/bin/coupler --tmp DIR
 """
+import os
 import unittest
 
 import harness  # tests/python/harness.py: the command line
@@ -82,6 +83,28 @@ class ScalarFields(unittest.TestCase):
                                           ARGS.coupler), 1)  # the default
         self.assertEqual(runs.default_jobs(dry, ["dem.threads=1"], ARGS.coupler),
                          runs.cpu_count())
+
+    def test_runs_side_by_side_neither_poll_nor_spin(self):
+        # Several runs on the same cores: no polling for replies, OpenMP threads that sleep (the
+        # coupler lets a dry run's DEM spin when it has the cores to itself).
+        keys = ("ROCKCUT_WIRE_SPIN_US", "OMP_WAIT_POLICY", "GOMP_SPINCOUNT")
+        saved = {k: os.environ.pop(k, None) for k in keys}
+        try:
+            runs.side_by_side(1)
+            self.assertFalse(any(k in os.environ for k in keys))
+            runs.side_by_side(2)
+            self.assertEqual(os.environ["ROCKCUT_WIRE_SPIN_US"], "0")
+            self.assertEqual(os.environ["OMP_WAIT_POLICY"], "PASSIVE")
+            for k in keys:
+                os.environ.pop(k, None)
+            os.environ["GOMP_SPINCOUNT"] = "1000"  # the user's own choice wins
+            runs.side_by_side(2)
+            self.assertNotIn("OMP_WAIT_POLICY", os.environ)
+        finally:
+            for k, v in saved.items():
+                os.environ.pop(k, None)
+                if v is not None:
+                    os.environ[k] = v
 
     def test_effective_scene_applies_overrides_and_refuses_a_bad_scene(self):
         text = runs.effective_scene(runs.case("cutting", "dry_reduced.pbtxt"), ["dem.threads=3"],

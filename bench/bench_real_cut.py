@@ -24,7 +24,8 @@ Per run it prints, from the resumed run's summary.json (the stretch only):
   svc            the modules' service work (messages, reports, guards), summed
   wait           the coupler's requests less the modules' busy time: transport and waiting
   own            the coupler's own work (output, observers, the scheme)
-and, per scene and variant, the median over the repeats.
+and, per scene and variant, the median over the repeats of the wall per step and of every phase,
+the service and the rest (transport, waits, the coupler) per step [ms].
 """
 import argparse
 import hashlib
@@ -36,6 +37,8 @@ import statistics
 import subprocess
 import sys
 import tempfile
+
+import scaling_model  # bench/: the per-step medians of every part
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = {
@@ -217,6 +220,10 @@ def main():
                     continue
                 print("%-9s %6g %-8s median %.3f ms/step over %d" % (
                     name, depth, v, statistics.median(r["ms_per_step"] for r in rs), len(rs)))
+                # Every phase, the service and the rest: medians per step [ms].
+                parts = scaling_model.per_step(rs)
+                print("%-9s %6g %-8s   %s" % (name, depth, v, ", ".join(
+                    "%s %.3f" % (k, 1e3 * t) for k, t in parts.items())))
     if args.json:
         with open(args.json, "w") as f:
             json.dump(results, f, indent=1)

@@ -54,6 +54,7 @@ class RealCut(unittest.TestCase):
         self.assertIn("making the state at 2 mm of cases/cutting/saturated_reduced_long.pbtxt",
                       first.stdout)
         self.assertEqual(len(os.listdir(cache)), 1)
+        self.assertIn("fluid.passes", first.stdout)  # the per-step medians of every part
         second = subprocess.run(argv, capture_output=True, text=True, timeout=240)
         self.assertEqual(second.returncode, 0, second.stdout + second.stderr)
         self.assertNotIn("making the state", second.stdout)  # the cached one

@@ -82,6 +82,28 @@ void ContactList::search(const Particles& p, const BondSet& bonds, double skin_m
   }
 }
 
+void ContactList::size_join() {
+  offset_.resize(found_.size());
+  std::size_t total = 0;
+  for (std::size_t t = 0; t < found_.size(); ++t) {
+    offset_[t] = total;
+    total += found_[t].i.size();
+  }
+  i_.resize(total);
+  j_.resize(total);
+  shear_force_.resize(total);
+  rolling_moment_.resize(total);
+}
+
+void ContactList::join(int t) {
+  const Found& f = found_[static_cast<std::size_t>(t)];
+  const auto at = static_cast<std::ptrdiff_t>(offset_[static_cast<std::size_t>(t)]);
+  std::copy(f.i.begin(), f.i.end(), i_.begin() + at);
+  std::copy(f.j.begin(), f.j.end(), j_.begin() + at);
+  std::copy(f.shear.begin(), f.shear.end(), shear_force_.begin() + at);
+  std::copy(f.rolling.begin(), f.rolling.end(), rolling_moment_.begin() + at);
+}
+
 void ContactList::end_rebuild() {
   i_.clear();
   j_.clear();

@@ -30,6 +30,10 @@ class ContactList {
   void search(const Particles& p, const BondSet& bonds, double skin_m, const CellGrid& grid,
               int t, int threads);
   void end_rebuild();
+  /// end_rebuild() shared out: size_join (one thread: the list sized, each thread's offset),
+  /// then join (every thread t: its pairs copied to its offset).
+  void size_join();
+  void join(int t);
   /// Adds the pairs of freshly broken bonds (interleaved i, j): they may collide from now on.
   void add_pairs(const std::vector<std::uint32_t>& pairs);
 
@@ -68,6 +72,7 @@ class ContactList {
     std::vector<double> shear, rolling;
   };
   std::vector<Found> found_;
+  std::vector<std::size_t> offset_;  // where each thread's pairs go in the joined list
 };
 
 }  // namespace rockcut::dem

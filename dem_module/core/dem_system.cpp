@@ -62,13 +62,15 @@ void DemSystem::rebuild_neighbours_in_team(int t, int threads) {
 #pragma omp barrier
 #pragma omp single
   {
-    if (contacts) contacts_.end_rebuild();
+    if (contacts) contacts_.size_join();
     if (!walls_.empty()) walls_.rebuild(particles_, settings_.skin_m);
     max_drift_m_ = 0.0;
     ++rebuilds_;
     buffers_.resize(threads, particles_.size());
-  }
-  force_window(t, threads);
+  }  // implied barrier: the list sized
+  if (contacts) contacts_.join(t);
+#pragma omp barrier
+  force_window(t, threads);  // reads the joined list
 #pragma omp barrier
 }
 

@@ -13,7 +13,9 @@
 
 namespace rockcut::wire {
 
-class PhaseClock {
+// On cache lines of its own: the first thread writes it inside parallel regions, and the other
+// threads must not find the fields they read beside it.
+class alignas(64) PhaseClock {
  public:
   explicit PhaseClock(std::vector<std::string> names)
       : names_(std::move(names)), seconds_(names_.size(), 0.0) {}

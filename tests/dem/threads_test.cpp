@@ -139,7 +139,8 @@ TEST(Threads, ANeighbourRebuildSharedOutListsThePairsInTheSerialOrder) {
     CellGrid g;
     shared.begin_rebuild(p, skin_m, g, threads);
     for (int t = threads - 1; t >= 0; --t) shared.search(p, bonds, skin_m, g, t, threads);
-    shared.end_rebuild();
+    shared.size_join();
+    for (int t = threads - 1; t >= 0; --t) shared.join(t);
     ASSERT_EQ(shared.size(), serial.size()) << threads;
     for (std::size_t k = 0; k < serial.size(); ++k) {
       ASSERT_EQ(shared.first(k), serial.first(k)) << threads << " threads, pair " << k;

@@ -214,8 +214,8 @@ std::optional<std::string> expected_error_line(const rockcut::Scene& scene, cons
   const std::optional<double> e = expected_force_error(*model, s, &detail);
   if (!e) return "accuracy   not covered by the work-precision study (docs/accuracy.md): " + detail;
   return "accuracy   expected error of the " + model->force + " horizontal force about " +
-         percent(*e) + " (root sum square of " + detail + "; docs/accuracy.md, against the study's finest "
-         "settings)";
+         percent(*e) + " (root sum square of " + detail +
+         "; docs/accuracy.md, against the study's finest settings)";
 }
 
 }  // namespace rockcut::coupler

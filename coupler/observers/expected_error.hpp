@@ -54,7 +54,8 @@ std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
 
 /// One line for the start-up report: the expected relative error of the study's horizontal force
 /// (mean or peak, by the scene's damping) for each setting, and their root sum square; or why the
-/// study does not cover the scene, or why its table could not be read. Nothing for scenes that are not saturated cuts of a specimen.
+/// study does not cover the scene, or why its table could not be read. Nothing for scenes that are
+/// not saturated cuts of a specimen.
 std::optional<std::string> expected_error_line(const rockcut::Scene& scene, const TimePlan& plan,
                                                double dem_limit_s, double fluid_stiffness_limit_s,
                                                const std::filesystem::path& program_dir);

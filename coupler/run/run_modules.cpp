@@ -8,7 +8,6 @@
 
 #include "process/module_environment.hpp"
 #include "run/ipc_directory.hpp"
-#include "run/overlap_choice.hpp"
 #include "run/reply_checks.hpp"
 #include "wire/init_parts.hpp"
 #include "wire/protocol.hpp"
@@ -121,12 +120,11 @@ void RunModules::start() {
   if (options_.transport == Transport::ipc) wire::remove_orphaned_shared_segments();
   // How the modules' idle threads wait (libgomp reads it when a module starts; the coupler's own
   // teams, inproc, keep the default it read before main).
-  prepare_module_environment(
-      scene.has_fluid(),
-      scene.has_fluid() && !choose_overlap(scene.coupling().overlap(), options_.transport,
-                                           scene.dem().threads(), scene.fluid().threads(),
-                                           usable_cores())
-                               .overlap);
+  if (scene.has_fluid()) {
+    overlap_ = choose_overlap(scene.coupling().overlap(), options_.transport,
+                              scene.dem().threads(), scene.fluid().threads(), usable_cores());
+  }
+  prepare_module_environment(scene.has_fluid(), overlap_ && !overlap_->overlap);
   dem_.link = std::make_unique<ModuleLink>(
       *context_, spec_for(wire::MODULE_KIND_DEM, scene.dem().executable(), "dem_module",
                           options_.dem_endpoint));

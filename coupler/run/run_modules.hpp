@@ -14,6 +14,7 @@
 
 #include "run/checkpoint_values.hpp"
 #include "run/module_link.hpp"
+#include "run/overlap_choice.hpp"
 #include "run/run_options.hpp"
 #include "run/time_plan.hpp"
 #include "scene/scene_loader.hpp"
@@ -89,6 +90,9 @@ class RunModules {
   /// The stability limits each module reported at Init (bounding dt and N dt).
   std::vector<Limit> dem_limits() const;
   std::vector<Limit> fluid_limits() const;
+  /// A coupled scene's choice of coupling.overlap (made in start(), before the modules' threads
+  /// wait in the way it implies); none for a dry scene.
+  const std::optional<OverlapChoice>& overlap() const { return overlap_; }
   void start_loop();
 
   /// Checkpoints: each module's state (SaveState), and back (LoadState).
@@ -104,6 +108,7 @@ class RunModules {
   std::filesystem::path ipc_dir_;
   RunModule dem_;
   std::optional<RunModule> fluid_;
+  std::optional<OverlapChoice> overlap_;
 };
 
 }  // namespace rockcut::coupler

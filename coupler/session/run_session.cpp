@@ -5,7 +5,6 @@
 
 #include "observers/run_observers.hpp"
 #include "run/ipc_directory.hpp"
-#include "run/overlap_choice.hpp"
 #include "checkpoint/resume.hpp"
 #include "session/run_report.hpp"
 #include "run/signals.hpp"
@@ -27,12 +26,9 @@ void RunSession::assemble() {
   modules_.start();
   modules_.init();
   plan_ = plan_time(scene_, modules_.dem_limits(), modules_.fluid_limits(), scene_.has_fluid());
-  if (scene_.has_fluid()) {
-    const OverlapChoice overlap =
-        choose_overlap(scene_.coupling().overlap(), options_.transport, scene_.dem().threads(),
-                       scene_.fluid().threads(), usable_cores());
-    plan_.forces_before_reply = !overlap.overlap;
-    plan_.report.push_back(overlap.report);
+  if (const auto& overlap = modules_.overlap()) {
+    plan_.forces_before_reply = !overlap->overlap;
+    plan_.report.push_back(overlap->report);
   }
   const RunModule* fluid = modules_.fluid();
   const ObserverInputs inputs{modules_.dem().label(),

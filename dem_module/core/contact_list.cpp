@@ -20,7 +20,8 @@ void ContactList::rebuild(const Particles& p, const BondSet& bonds, double skin_
                           CellGrid& grid) {
   begin_rebuild(p, skin_m, grid, 1);
   search(p, bonds, skin_m, grid, 0, 1);
-  end_rebuild();
+  size_join();
+  join(0);
 }
 
 void ContactList::begin_rebuild(const Particles& p, double skin_m, CellGrid& grid, int threads) {
@@ -35,14 +36,6 @@ void ContactList::begin_rebuild(const Particles& p, double skin_m, CellGrid& gri
   }
   std::sort(history_.begin(), history_.end(),
             [](const History& a, const History& b) { return a.key < b.key; });
-  old_keys_.clear();
-  old_shear_.clear();
-  old_rolling_.clear();
-  for (const History& h : history_) {
-    old_keys_.push_back(h.key);
-    old_shear_.push_back(h.shear);
-    old_rolling_.push_back(h.rolling);
-  }
   double r_max = 0.0;
   for (double r : p.radius) r_max = std::max(r_max, r);
   grid.build(p.position, 2.0 * r_max + skin_m);
@@ -73,11 +66,12 @@ void ContactList::search(const Particles& p, const BondSet& bonds, double skin_m
       if (bonds.bonded(lo, hi)) return;
       f.i.push_back(lo);
       f.j.push_back(hi);
-      const auto it = std::lower_bound(old_keys_.begin(), old_keys_.end(), key(lo, hi));
-      const bool known = it != old_keys_.end() && *it == key(lo, hi);
-      const auto at = static_cast<std::size_t>(it - old_keys_.begin());
-      f.shear.push_back(known ? old_shear_[at] : 0.0);
-      f.rolling.push_back(known ? old_rolling_[at] : 0.0);
+      const std::uint64_t k = key(lo, hi);
+      const auto it = std::lower_bound(history_.begin(), history_.end(), k,
+                                       [](const History& h, std::uint64_t v) { return h.key < v; });
+      const bool known = it != history_.end() && it->key == k;
+      f.shear.push_back(known ? it->shear : 0.0);
+      f.rolling.push_back(known ? it->rolling : 0.0);
     });
   }
 }
@@ -102,19 +96,6 @@ void ContactList::join(int t) {
   std::copy(f.j.begin(), f.j.end(), j_.begin() + at);
   std::copy(f.shear.begin(), f.shear.end(), shear_force_.begin() + at);
   std::copy(f.rolling.begin(), f.rolling.end(), rolling_moment_.begin() + at);
-}
-
-void ContactList::end_rebuild() {
-  i_.clear();
-  j_.clear();
-  shear_force_.clear();
-  rolling_moment_.clear();
-  for (const Found& f : found_) {
-    i_.insert(i_.end(), f.i.begin(), f.i.end());
-    j_.insert(j_.end(), f.j.begin(), f.j.end());
-    shear_force_.insert(shear_force_.end(), f.shear.begin(), f.shear.end());
-    rolling_moment_.insert(rolling_moment_.end(), f.rolling.begin(), f.rolling.end());
-  }
 }
 
 void ContactList::add_pairs(const std::vector<std::uint32_t>& pairs) {

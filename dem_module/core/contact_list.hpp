@@ -22,16 +22,14 @@ class ContactList {
   /// Lists every unbonded pair closer than r_i + r_j + skin, keeping the tangential force of pairs
   /// that were already listed.
   void rebuild(const Particles& p, const BondSet& bonds, double skin_m, CellGrid& grid);
-  /// The same in three parts, for a team of threads: begin_rebuild (one thread: the history
-  /// sorted, the grid built), search (every thread t of `threads`: the pairs of its share of the
-  /// particles, into its own buffer), end_rebuild (one thread: the buffers joined in thread order).
-  /// The list comes out in the order rebuild() gives, at any thread count.
+  /// The same in parts, for a team of threads: begin_rebuild (one thread: the history sorted,
+  /// the grid built), search (every thread t of `threads`: the pairs of its share of the
+  /// particles, into its own buffer), size_join (one thread: the list sized, each thread's
+  /// offset), join (every thread t: its pairs copied to its offset). The list comes out in the
+  /// order of a search on one thread, at any thread count.
   void begin_rebuild(const Particles& p, double skin_m, CellGrid& grid, int threads);
   void search(const Particles& p, const BondSet& bonds, double skin_m, const CellGrid& grid,
               int t, int threads);
-  void end_rebuild();
-  /// end_rebuild() shared out: size_join (one thread: the list sized, each thread's offset),
-  /// then join (every thread t: its pairs copied to its offset).
   void size_join();
   void join(int t);
   /// Adds the pairs of freshly broken bonds (interleaved i, j): they may collide from now on.
@@ -59,9 +57,8 @@ class ContactList {
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> shear_force_;  ///< along t = (-n_y, n_x), acting on j [N/m]
   std::vector<double> rolling_moment_;  ///< rolling spring's moment on i [N m/m] (0 without)
-  // Rebuild scratch, kept to avoid allocating in steady state.
-  std::vector<std::uint64_t> old_keys_;
-  std::vector<double> old_shear_, old_rolling_;
+  // Rebuild scratch, kept to avoid allocating in steady state. The tangential history of the
+  // listed pairs, sorted by pair for the search's lookups.
   struct History {
     std::uint64_t key;
     double shear, rolling;

@@ -1,5 +1,5 @@
 // A checkpoint: one self-describing HDF5 file OUT/checkpoints/checkpoint_<step>.h5 holding the
-// coupler's and each module's state (opaque named arrays, state/state_archive.hpp), the effective
+// coupler's and each module's state (opaque named arrays, wire/state_archive.hpp), the effective
 // scene text, the program and protocol versions, the step and time, and a checksum over all of it.
 // Written atomically (temporary file, fsync, rename, fsync of the directory): a checkpoint file
 // that exists under its final name is whole.

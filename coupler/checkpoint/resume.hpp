@@ -10,7 +10,7 @@
 #include "output/run_file.hpp"
 #include "run/run_options.hpp"
 #include "scene/scene_loader.hpp"
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 
 namespace rockcut::coupler {
 

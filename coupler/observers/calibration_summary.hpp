@@ -10,7 +10,7 @@
 
 #include "observers/run_observer.hpp"
 #include "output/summary_json.hpp"
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 #include "rockcut/scene.pb.h"
 
 namespace rockcut::coupler {

@@ -13,7 +13,7 @@
 #include "output/summary_json.hpp"
 #include "rockcut/wire.pb.h"
 #include "run/run_clock.hpp"
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 
 namespace rockcut::coupler {
 

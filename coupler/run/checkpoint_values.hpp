@@ -1,5 +1,5 @@
 // What a checkpoint carries: the coupler's and each module's state as named values
-// (state/state_archive.hpp), the effective scene, the versions, the step and the time. The run
+// (wire/state_archive.hpp), the effective scene, the versions, the step and the time. The run
 // state of the bottom floor; the file that holds it is checkpoint/checkpoint_file.hpp.
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 
 namespace rockcut::coupler {
 

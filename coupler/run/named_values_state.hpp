@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "run/text_lines.hpp"
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 
 namespace rockcut::coupler {
 

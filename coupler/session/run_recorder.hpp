@@ -16,7 +16,7 @@
 #include "run/run_clock.hpp"
 #include "run/run_modules.hpp"
 #include "run/time_plan.hpp"
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 
 namespace rockcut::coupler {
 

@@ -11,7 +11,7 @@
 #include "core/force_buffers.hpp"
 #include "core/interaction_law.hpp"
 #include "core/particles.hpp"
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 
 namespace rockcut::dem {
 

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 #include "wire/phase_clock.hpp"
 
 namespace rockcut::fluid {

@@ -78,7 +78,7 @@ def default_jobs(scene, sets=(), coupler_path=None):
 
 def side_by_side(jobs):
     """Sets the environment for `jobs` runs at a time. Runs side by side must not poll for a reply
-    before sleeping (proto/wire/spin_wait.hpp): with more runs than cores the pollers starve each
+    before sleeping (wire/spin_wait.hpp): with more runs than cores the pollers starve each
     other; nor may their OpenMP threads spin, which the coupler lets a dry run's DEM do when it
     has the cores to itself (coupler/process/module_environment.hpp). Explicit
     ROCKCUT_WIRE_SPIN_US and OMP_WAIT_POLICY still win."""

@@ -1,4 +1,4 @@
-// docs/scene_reference.md and proto/scene/field_docs.cpp are what scene_reference prints now.
+// docs/scene_reference.md and scene/field_docs.cpp are what scene_reference prints now.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kRegenerate =
     "the schema (proto/rockcut/scene.proto) changed; regenerate from the source folder with\n"
-    "  build/bin/scene_reference -o docs/scene_reference.md --field-docs proto/scene/field_docs.cpp";
+    "  build/bin/scene_reference -o docs/scene_reference.md --field-docs scene/field_docs.cpp";
 
 std::string read(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -39,8 +39,8 @@ TEST(SceneReference, IsCurrent) {
   const fs::path source = ROCKCUT_SOURCE_DIR;
   EXPECT_TRUE(markdown == read(source / "docs/scene_reference.md"))
       << "docs/scene_reference.md is out of date: " << kRegenerate;
-  EXPECT_TRUE(read(docs_cpp) == read(source / "proto/scene/field_docs.cpp"))
-      << "proto/scene/field_docs.cpp is out of date: " << kRegenerate;
+  EXPECT_TRUE(read(docs_cpp) == read(source / "scene/field_docs.cpp"))
+      << "scene/field_docs.cpp is out of date: " << kRegenerate;
 }
 
 }  // namespace

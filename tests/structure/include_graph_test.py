@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The include graph keeps the house's rules: the three modules (dem_module, fluid_module, coupler)
-never include one another, only the shared layer (proto/: scene, wire, state and the generated
-rockcut/*.pb.h); inside the fluid module the SP operators (sp/) include nothing of the models
+never include one another, only the shared layer (scene/, wire/ and the rockcut/*.pb.h generated from
+proto/); inside the fluid module the SP operators (sp/) include nothing of the models
 (models/), which build on them; and the coupler's floors include only their own and those below:
 bottom run/ and process/, middle schemes/, observers/, cutting_models/ and output/, top
 checkpoint/, session/ and cli/.
@@ -17,7 +17,8 @@ import sys
 import unittest
 
 MODULES = ("dem_module", "fluid_module", "coupler")
-SHARED = "proto"
+SHARED = ("scene", "wire")
+SCHEMAS = "proto"
 # Folders whose files may not include the named folders of the same module: the fluid's operators
 # nothing of its models; the coupler's floors nothing of a floor above (coupler/CMakeLists.txt).
 COUPLER_MIDDLE = ("schemes", "observers", "cutting_models", "output")
@@ -47,10 +48,10 @@ def where(include, module, root):
     """'own', 'shared', 'generated', another module's name, or None."""
     if os.path.isfile(os.path.join(root, module, include)):
         return "own"
-    if os.path.isfile(os.path.join(root, SHARED, include)):
+    if include.split("/")[0] in SHARED and os.path.isfile(os.path.join(root, include)):
         return "shared"
     if include.startswith("rockcut/") and include.endswith(".pb.h"):
-        proto = os.path.join(root, SHARED, include[:-len(".pb.h")] + ".proto")
+        proto = os.path.join(root, SCHEMAS, include[:-len(".pb.h")] + ".proto")
         if os.path.isfile(proto):
             return "generated"
     for other in MODULES:
@@ -61,7 +62,8 @@ def where(include, module, root):
 
 def violations(root):
     found = []
-    for module in MODULES:
+    # The shared layer is held to the same rule: it includes itself and the generated headers only.
+    for module in MODULES + SHARED:
         for path in sources(os.path.join(root, module)):
             rel = os.path.relpath(path, os.path.join(root, module))
             folder = rel.split(os.sep)[0]
@@ -91,7 +93,7 @@ class IncludeGraph(unittest.TestCase):
                 os.makedirs(os.path.dirname(os.path.join(tree, rel)), exist_ok=True)
                 with open(os.path.join(tree, rel), "w") as f:
                     f.write(text)
-            write("proto/wire/message.hpp")
+            write("wire/message.hpp")
             write("dem_module/core/bonds.hpp", '#include "wire/message.hpp"\n')
             write("fluid_module/sp/kernel.hpp")
             write("fluid_module/models/model.hpp", '#include "sp/kernel.hpp"\n')
@@ -102,8 +104,11 @@ class IncludeGraph(unittest.TestCase):
             write("fluid_module/sp/bad.cpp", '#include "models/model.hpp"\n')
             write("dem_module/core/gone.cpp", '#include "nowhere/x.hpp"\n')
             write("coupler/run/up.cpp", '#include "session/loop.hpp"\n')
+            write("wire/down.cpp", '#include "models/model.hpp"\n')
             found = violations(tree)
-            self.assertEqual(len(found), 4, found)
+            self.assertEqual(len(found), 5, found)
+            self.assertTrue(any("wire/down.cpp" in v and "is fluid_module's" in v for v in found),
+                            found)
             self.assertTrue(any("run/ may not include session/" in v for v in found), found)
             self.assertTrue(any("is dem_module's" in v for v in found), found)
             self.assertTrue(any("sp/ may not include models/" in v for v in found), found)

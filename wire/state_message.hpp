@@ -1,9 +1,9 @@
-// A module's state (state/state_archive.hpp) on the wire: its arrays as the message's array
+// A module's state (wire/state_archive.hpp) on the wire: its arrays as the message's array
 // frames (through shared memory over ipc://, like any large array), its texts in the State body.
 #pragma once
 
 #include "rockcut/wire.pb.h"
-#include "state/state_archive.hpp"
+#include "wire/state_archive.hpp"
 #include "wire/message.hpp"
 
 namespace rockcut::wire {

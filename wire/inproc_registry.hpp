@@ -2,7 +2,7 @@
 //
 // A module's service library registers its serve function here at static-initialisation time; the
 // coupler looks it up by kind. The coupler never includes a module's headers: the modules stay
-// separate programs that share only proto/.
+// separate programs that share only proto/, scene/ and wire/.
 #pragma once
 
 #include <string>

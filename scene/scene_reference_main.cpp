@@ -1,7 +1,7 @@
 // scene_reference [DESCRIPTOR_SET] [-o FILE] [--field-docs FILE]
 // Prints the field reference of the scene schema (docs/scene_reference.md) as Markdown, from the
 // descriptor set protoc writes with the proto comments. --field-docs also writes the field comments
-// as C++ (proto/scene/field_docs.cpp) for the loader's messages.
+// as C++ (scene/field_docs.cpp) for the loader's messages.
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/descriptor.pb.h>
 
@@ -24,7 +24,7 @@ namespace pb = google::protobuf;
 using rockcut::scene::join;
 
 constexpr const char* kRegenerate =
-    "build/bin/scene_reference -o docs/scene_reference.md --field-docs proto/scene/field_docs.cpp";
+    "build/bin/scene_reference -o docs/scene_reference.md --field-docs scene/field_docs.cpp";
 
 // Builds each file after its dependencies, whatever order the set lists them in.
 const pb::FileDescriptor* build(const std::string& name,

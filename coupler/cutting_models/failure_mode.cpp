@@ -26,13 +26,8 @@ FailureMode miedema_failure_mode(double cohesion_pa, double friction_angle_deg,
   const double tau = cohesion_pa + m.shear_plane_normal_stress_pa * std::tan(phi);
   m.least_principal_stress_pa =
       m.shear_plane_normal_stress_pa + tau * (std::sin(phi) - 1.0) / std::cos(phi);
-  if (m.shear_plane_normal_stress_pa < -tensile_strength_pa) {
-    m.mode = "tensile";
-  } else if (m.least_principal_stress_pa < -tensile_strength_pa) {
-    m.mode = "tensile_and_shear";
-  } else {
-    m.mode = "shear";
-  }
+  // sigma_min <= sigma_n: a shear plane itself in tension beyond the BTS is a case of the first.
+  m.mode = m.least_principal_stress_pa < -tensile_strength_pa ? "tensile" : "shear";
   return m;
 }
 

@@ -1,5 +1,5 @@
-// Miedema's criterion for the failure mode: does the rock fail in tension (tear / chip type) or in
-// shear (shear / flow type) ahead of the tool?
+// Miedema's criterion for the failure mode: does the rock ahead of the tool fail in tension before
+// the flow type's shear plane fails in shear?
 //
 // Miedema (2014) section 8.7 ("Tensile failure or shear failure", figures 8-53 and 8-54): take the
 // flow type's shear plane at its minimum-force angle beta (merchant_flow_type.hpp). Its normal
@@ -12,14 +12,18 @@
 //   sigma_min   = sigma_n + tau (sin(phi) - 1) / cos(phi)
 //
 // Compared with the tensile strength sigma_t (BTS):
-//   sigma_n < -sigma_t                 "tensile": the shear plane itself is in tension beyond the
-//                                      BTS (Miedema's upper limit; the tear type)
-//   sigma_min < -sigma_t <= sigma_n    "tensile_and_shear": the circle reaches the tension cut-off
-//                                      before shear failure completes (the chip type)
-//   -sigma_t <= sigma_min              "shear": shear failure only (the shear / flow type)
+//   sigma_min < -sigma_t               "tensile": the circle reaches the tension cut-off before the
+//                                      shear plane fails: tensile failure, the tear type (Miedema's
+//                                      upper limit in figures 8-53, 8-54)
+//   -sigma_t <= sigma_min              "shear": the shear plane fails first (Miedema's chip, shear
+//                                      and flow types; his lower limit, where the chip type gives
+//                                      way to pure shear, is not computed here)
 //   alpha + delta + phi >= 180 deg     "none": no shear plane (stresses NaN)
-// Miedema plots the limits as -BTS/c against alpha (figure 8-53) and as UCS/BTS (figure 8-54,
-// with c = UCS (1 - sin phi) / (2 cos phi), eq. 3-34).
+// Miedema's worked numbers (section 8.9 and exercise 16.8.5 of the 2019a edition): UCS 100 MPa,
+// phi 20, alpha 60 deg gives sigma_min -8.48 MPa, "the transition tensile failure/shear failure at
+// a tensile strength of about -8.5 MPa"; UCS 60 MPa, BTS 3 MPa gives -5.09 MPa, tensile failure.
+// He plots the limit as -BTS/c against alpha (figure 8-53) and as UCS/BTS (figure 8-54, with
+// c = UCS (1 - sin phi) / (2 cos phi), eq. 3-34).
 #pragma once
 
 #include <string>
@@ -29,7 +33,7 @@ namespace rockcut::coupler::cutting_models {
 struct FailureMode {
   double shear_plane_normal_stress_pa = 0.0;  ///< sigma_n, compression positive
   double least_principal_stress_pa = 0.0;     ///< sigma_min, compression positive
-  std::string mode;                           ///< "tensile", "tensile_and_shear", "shear" or "none"
+  std::string mode;                           ///< "tensile", "shear" or "none"
 };
 
 FailureMode miedema_failure_mode(double cohesion_pa, double friction_angle_deg,

@@ -139,16 +139,37 @@ TEST(MiedemaFailureMode, PureCohesionWithoutFrictionReducesToTanHalfAlpha) {
 
 TEST(MiedemaFailureMode, ModesFollowTheTensileStrength) {
   // alpha = 20, phi = delta = 0: sigma_min = c (tan 10 - 1) = -0.8237 c, sigma_n = +0.1763 c.
-  EXPECT_EQ(miedema_failure_mode(kC, 0.0, 0.5 * kC, 0.0, 20.0).mode, "tensile_and_shear");
-  EXPECT_EQ(miedema_failure_mode(kC, 0.0, 0.9 * kC, 0.0, 20.0).mode, "shear");
+  EXPECT_EQ(miedema_failure_mode(kC, 0.0, 0.5 * kC, 0.0, 20.0).mode, "tensile");
+  EXPECT_EQ(miedema_failure_mode(kC, 0.0, 0.8 * kC, 0.0, 20.0).mode, "tensile");
+  EXPECT_EQ(miedema_failure_mode(kC, 0.0, 0.85 * kC, 0.0, 20.0).mode, "shear");
   // alpha = 20, delta = 0, phi = 40: beta = 60, sigma_n = -c cos(80) cos(40) / sin(120)
-  // = -0.1536 c: the shear plane itself is in tension; below that BTS the rock tears.
+  // = -0.1536 c: the shear plane itself is in tension, and so below any small BTS.
   const FailureMode m = miedema_failure_mode(kC, 40.0, 0.1 * kC, 0.0, 20.0);
   EXPECT_NEAR(m.shear_plane_normal_stress_pa,
               -kC * std::cos(radians(80.0)) * std::cos(radians(40.0)) / std::sin(radians(120.0)),
               1e-9 * kC);
+  EXPECT_LT(m.least_principal_stress_pa, m.shear_plane_normal_stress_pa);
   EXPECT_EQ(m.mode, "tensile");
   EXPECT_EQ(miedema_failure_mode(kC, 60.0, kBts, 60.0, 60.0).mode, "none");
+}
+
+// Miedema, The Delft Sand, Clay & Rock Cutting Model (2019a): section 8.9 (figures 8-49 to 8-52)
+// and the exercise of figure 16-11: UCS 100 MPa, phi 20 deg, blade angle 60 deg (delta 2/3 phi, as
+// in exercise 16.8.5 below). The book's Mohr circle of the shear plane has radius 45.59 MPa and
+// least principal stress -8.48 MPa; "the transition tensile failure/shear failure occurs at a
+// tensile strength of about -8.5 MPa", and with -5 MPa (figure 16-11) the rock fails in tension.
+// Tolerance 0.005 MPa: the book prints two decimals.
+TEST(MiedemaFailureMode, BookTransitionAtEightAndAHalfPercentOfTheUcs) {
+  const double ucs = 100e6, phi = 20.0, delta = 2.0 * phi / 3.0, alpha = 60.0;
+  const double c = ucs * (1.0 - std::sin(radians(phi))) / (2.0 * std::cos(radians(phi)));
+  const FailureMode m = miedema_failure_mode(c, phi, 5e6, delta, alpha);
+  const double tau = c + m.shear_plane_normal_stress_pa * std::tan(radians(phi));
+  EXPECT_NEAR(tau / std::cos(radians(phi)), 45.59e6, 0.005e6);
+  EXPECT_NEAR(m.least_principal_stress_pa, -8.48e6, 0.005e6);
+  EXPECT_EQ(m.mode, "tensile");
+  EXPECT_EQ(miedema_failure_mode(c, phi, 8.4e6, delta, alpha).mode, "tensile");
+  EXPECT_EQ(miedema_failure_mode(c, phi, 8.6e6, delta, alpha).mode, "shear");
+  EXPECT_EQ(miedema_failure_mode(c, phi, 20e6, delta, alpha).mode, "shear");
 }
 
 // Miedema, The Delft Sand, Clay & Rock Cutting Model (2019a), exercise 16.8.5 "Cutting forces &
@@ -168,7 +189,7 @@ TEST(MiedemaFailureMode, BookExerciseSixtyMegapascalRock) {
   EXPECT_NEAR(m.shear_plane_normal_stress_pa, 12.9e6, 0.05e6);
   EXPECT_NEAR(c + m.shear_plane_normal_stress_pa * std::tan(radians(phi)), 25.7e6, 0.05e6);
   EXPECT_NEAR(m.least_principal_stress_pa, -5.09e6, 0.01e6);
-  EXPECT_NE(m.mode, "shear");  // the circle reaches the tension cut-off: tensile failure
+  EXPECT_EQ(m.mode, "tensile");  // the circle reaches the tension cut-off: tensile failure
 }
 
 // ---- Hyperbaric --------------------------------------------------------------------------------

@@ -61,7 +61,8 @@ def write_rock(path, start_rock, params, targets, means, errors, seeds, command,
         phi = math.degrees(math.asin((ucs - bts) / (ucs + bts)))
         c = math.sqrt(ucs * bts) / 2
         source = ["# c and phi of the straight envelope tangent to the UCS and BTS circles (Paul 1961,",
-                  "# as default_rock.pbtxt) until `rockcut envelope` measures them."]
+                  "# as default_rock.pbtxt); `rockcut envelope` measures the DEM rock's own (its c and",
+                  "# phi in place of these: docs/cutting_models.md)."]
     lines += ["# For the analytical cutting models (the DEM does not read it): the measured UCS and BTS;"]
     lines += source + ["rock {", f"  ucs_pa: {ucs:.4g}", f"  bts_pa: {bts:.4g}",
                        f"  cohesion_pa: {c:.4g}", f"  friction_angle_deg: {max(phi, 0.0):.4g}", "}", ""]

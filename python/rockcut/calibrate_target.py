@@ -34,7 +34,7 @@ from . import mohr_coulomb, rock_tests, runs
 from .calibration_targets import PROPERTIES, fail, fmt, parse_targets, refuse_unreachable, structure
 from .rock_file import write_rock
 from .rock_structure import cold_start, next_params
-from .run_data import scalar_fields
+from .run_data import blocks, scalar_fields, without_comments
 from .stats import mean_and_error
 
 def rock_parameters(ucs_scene, coupler):
@@ -146,6 +146,9 @@ def main(argv):
     os.makedirs(args.out, exist_ok=True)
     scenes = rock_tests.write_scenes(args.out, start_rock)
     rock = rock_parameters(scenes["ucs"], args.coupler)
+    # The damping the tests run under (the starting rock's or a --set's): the rock file keeps it.
+    damping = blocks(without_comments(runs.effective_scene(scenes["ucs"], args.set, args.coupler)),
+                     "damping")
     params = cold_start(targets, rock, model)
     command = "rockcut calibrate " + " ".join(shlex.quote(a) for a in argv)
 
@@ -196,7 +199,8 @@ def main(argv):
                                         start_rock, dict(p, **{k: rock[k] for k in (
                                             "radius_min_m", "radius_max_m", "density_kg_m3",
                                             "friction")}),
-                                        targets, m, e, seeds, command, args.coarse_factor)
+                                        targets, m, e, seeds, command, args.coarse_factor,
+                                        damping[0] if damping else None)
     report = [f"# Calibration: {'converged' if done else 'NOT converged'}", "",
               f"`{command}`", "",
               f"{len(rounds)} rounds, {total_runs} runs on seeds {','.join(map(str, seeds))}, "

@@ -14,10 +14,14 @@ def base_of(rock_file):
     return m.group(1) if m else None
 
 
-def write_rock(path, start_rock, params, targets, means, errors, seeds, command, coarse_factor):
+def write_rock(path, start_rock, params, targets, means, errors, seeds, command, coarse_factor,
+               damping=None):
     """The fine rock file and the coarse one beside it. The fine one's base is the starting rock;
     written over the starting rock itself (regenerating a shipped rock), it keeps that file's own
-    base and writes the disc sizes, density and grain friction it held."""
+    base and writes the disc sizes, density and grain friction it held. `damping`: the body of the
+    `damping { }` block the loading tests ran under, when they set one; the rock file carries it,
+    since a rock's strengths hold only under the damping they were calibrated with (docs/model.md,
+    "Damping")."""
     path = os.path.abspath(path)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     over_start = path == os.path.abspath(start_rock)
@@ -51,7 +55,11 @@ def write_rock(path, start_rock, params, targets, means, errors, seeds, command,
               "  bonds {",
               f"    normal_stiffness_pa: {kn:.4g}", f"    shear_stiffness_pa: {ks:.4g}",
               f"    tensile_strength_n_per_m: {tn:.4g}", f"    shear_strength_n_per_m: {ts:.4g}",
-              f"    friction_angle_deg: {params['phi_b_deg']:.4g}", "  }", "}", ""]
+              f"    friction_angle_deg: {params['phi_b_deg']:.4g}", "  }"]
+    if damping:
+        lines += ["  # the damping the loading tests ran under: the strengths above hold under it",
+                  f"  damping {{ {' '.join(damping.split())} }}"]
+    lines += ["}", ""]
     ucs, bts, phi = means["ucs"], means["bts"], means.get("phi", math.nan)
     if phi == phi:  # measured: the envelope through the UCS and the confined test
         c = ucs * (1 - math.sin(math.radians(phi))) / (2 * math.cos(math.radians(phi)))

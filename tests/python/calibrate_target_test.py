@@ -130,7 +130,10 @@ class Regenerate(unittest.TestCase):
         for name in ("default_rock.pbtxt", "default_rock_coarse.pbtxt"):
             shutil.copy(os.path.join(REPO, "cases", "rock", name), rocks)
         rock = os.path.join(rocks, "default_rock_coarse.pbtxt")
+        # Calibrated under dashpots: the rock file carries the damping its strengths hold under,
+        # so a scene built on it cuts under the same damping without being told.
         p = rockcut("calibrate", "--target", "ucs=20MPa", "--rock", rock, "--write", rock,
+                    "--set", "dem.damping.model=viscous", "--set", "dem.damping.damping_ratio=0.2",
                     "--seeds", "1,2", "--tolerance", "0.1", "--out", os.path.join(out, "run"))
         self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
         with open(rock) as f:
@@ -139,8 +142,15 @@ class Regenerate(unittest.TestCase):
         v = validated_on(rock, os.path.join(out, "use.pbtxt"))
         self.assertEqual(v.returncode, 0, v.stderr)
         for field in ("radius_min_m: 0.0008", "radius_max_m: 0.0016", "density_kg_m3: 2800",
-                      "friction: 1"):
+                      "friction: 1", 'model: "viscous"', "damping_ratio: 0.2"):
             self.assertIn(field, v.stdout)
+        # Without a damping of its own or a --set, the rock names none (the schema's default).
+        plain = os.path.join(out, "plain.pbtxt")
+        p = rockcut("calibrate", "--target", "ucs=20MPa", "--rock", COARSE, "--write", plain,
+                    "--seeds", "1,2", "--tolerance", "0.1", "--out", os.path.join(out, "run_plain"))
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        with open(plain) as f:
+            self.assertNotIn("damping", f.read())
 
 
 class FrictionAngle(unittest.TestCase):

@@ -41,8 +41,16 @@ BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tole
   b.shear_force_.assign(b.i_.size(), 0.0);
   b.normal_force_at_break_.assign(b.i_.size(), 0.0);
   b.broken_.assign(b.i_.size(), 0);
+  b.set_pair_masses(p);
   b.refresh_partners(p.size());
   return b;
+}
+
+void BondSet::set_pair_masses(const Particles& p) {
+  sqrt_pair_mass_.resize(i_.size());
+  for (std::size_t k = 0; k < i_.size(); ++k) {
+    sqrt_pair_mass_[k] = sqrt_effective_mass(p.inv_mass[i_[k]], p.inv_mass[j_[k]]);
+  }
 }
 
 template <bool kDashpots>
@@ -53,7 +61,7 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
-  const double* inv_m = p.inv_mass.data();
+  const double* sqrt_m = sqrt_pair_mass_.data();
   const std::uint32_t* bi = i_.data();
   const std::uint32_t* bj = j_.data();
   const double* rest = rest_length_.data();
@@ -105,8 +113,7 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
     shear[k] = fs;
     if constexpr (kDashpots) {
       const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
-      const PairDashpots d = pair_dashpots(cn_scale, ct_scale, sqrt_effective_mass(inv_m[i], inv_m[j]),
-                                           vn, vt, dt, dissipated);
+      const PairDashpots d = pair_dashpots(cn_scale, ct_scale, sqrt_m[k], vn, vt, dt, dissipated);
       const double fn_total = fn + d.normal, fs_total = fs + d.tangential;
       const PairForce f = pair_force(fn_total, fs_total, nx, ny, tx, ty);  // on j
       out.add_pair(i, j, f.fx, f.fy, -fs_total * r[i], -fs_total * r[j]);
@@ -158,6 +165,7 @@ void BondSet::remove_broken(const Particles& p, double time_s, double contact_no
     i_[keep] = i_[k];
     j_[keep] = j_[k];
     rest_length_[keep] = rest_length_[k];
+    sqrt_pair_mass_[keep] = sqrt_pair_mass_[k];
     shear_force_[keep] = shear_force_[k];
     broken_[keep] = 0;
     ++keep;
@@ -165,6 +173,7 @@ void BondSet::remove_broken(const Particles& p, double time_s, double contact_no
   i_.resize(keep);
   j_.resize(keep);
   rest_length_.resize(keep);
+  sqrt_pair_mass_.resize(keep);
   shear_force_.resize(keep);
   normal_force_at_break_.resize(keep);
   broken_.resize(keep);

@@ -53,7 +53,8 @@ class BondSet {
   void refresh_partners(std::size_t n);
   /// Checkpoint (core/dem_state.cpp): the bonds, their springs and broken flags.
   void save_state(state::StateArchive& a) const;
-  void load_state(const state::StateArchive& a, std::size_t particles);
+  /// `p`: the particles, already loaded (their masses give each bond's sqrt(m_eff)).
+  void load_state(const state::StateArchive& a, const Particles& p);
 
   // Test access.
   /// Normal force of bond k at the current positions (compression positive) [N/m].
@@ -63,6 +64,7 @@ class BondSet {
   std::uint32_t second(std::size_t k) const { return j_[k]; }
 
  private:
+  void set_pair_masses(const Particles& p);
   template <bool kDashpots>
   void compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,
                     ForceView out, bool& any_broken, double contact_normal_pa,
@@ -71,6 +73,9 @@ class BondSet {
   BondLaw law_;
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> rest_length_;
+  /// sqrt(m_eff) of each bond's pair [sqrt(kg/m)], for its dashpots: fixed while the bond lives, so
+  /// formed once (set_pair_masses) instead of a square root and a division per bond and step.
+  std::vector<double> sqrt_pair_mass_;
   std::vector<double> shear_force_;   ///< F_t along t = (-n_y, n_x), acting on j [N/m]
   std::vector<double> normal_force_at_break_;  ///< F_n when the bond broke (energy released)
   std::vector<std::uint8_t> broken_;  ///< 0, or 1 + BreakMode

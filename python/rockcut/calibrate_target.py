@@ -27,6 +27,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import shlex
 import time
 
@@ -149,6 +150,8 @@ def main(argv):
     # The damping the tests run under (the starting rock's or a --set's): the rock file keeps it.
     damping = blocks(without_comments(runs.effective_scene(scenes["ucs"], args.set, args.coupler)),
                      "damping")
+    model_named = re.search(r'\bmodel\s*:\s*"([^"]*)"', damping[0]) if damping else None
+    rock["damping_model"] = model_named.group(1) if model_named else "local"
     params = cold_start(targets, rock, model)
     command = "rockcut calibrate " + " ".join(shlex.quote(a) for a in argv)
 

@@ -28,7 +28,8 @@ def lattice_shape(r):
 
 def cold_start(targets, rock, model):
     """Parameters from the structure alone: nothing of the starting rock but its disc size, its
-    strength ratio and its bond friction (and its stiffnesses where E or nu are not targets)."""
+    strength ratio and its bond friction (and its stiffnesses where E or nu are not targets), and
+    the damping model the loading tests run under (`rock["damping_model"]`, e.g. "viscous")."""
     r = rock["ks_ratio"]
     if "nu" in targets:
         nu = model["poisson_ratio"]
@@ -43,6 +44,8 @@ def cold_start(targets, rock, model):
     if "bts" in targets:
         guesses.append(targets["bts"] * s["bts_factor"] * rock["diameter_m"])
     tn = math.exp(sum(math.log(g) for g in guesses) / len(guesses))
+    if rock.get("damping_model") == "viscous":
+        tn /= s["viscous_factor"]  # the factors above are local damping's; dashpots weaken ~10 %
     phi_b = bond_friction_for(targets["phi"], model) if "phi" in targets else rock["phi_b_deg"]
     return {"kn": kn, "ks_ratio": r, "tn": tn, "ts_ratio": rock["ts_ratio"], "phi_b_deg": phi_b}
 

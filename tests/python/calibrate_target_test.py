@@ -21,7 +21,8 @@ import harness
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "python"))
-from rockcut import mohr_coulomb  # noqa: E402
+from rockcut import mohr_coulomb, rock_structure  # noqa: E402
+from rockcut.calibration_targets import structure  # noqa: E402
 
 COARSE = os.path.join(REPO, "cases", "rock", "default_rock_coarse.pbtxt")
 # The chosen set: the coarse default rock (K_n 7.25e9, K_s/K_n 0.503, T 2.66e4) made 40 % stiffer,
@@ -67,6 +68,28 @@ class Refusals(unittest.TestCase):
             self.assertEqual(len(lines), 1, f"{target}: {p.stderr}")
             self.assertIn(words, lines[0], target)
             self.assertFalse(os.path.exists(out), f"{target}: something was written")
+
+
+class ColdStart(unittest.TestCase):
+    def test_under_dashpots_the_cold_start_asks_stronger_bonds(self):
+        # The structure's strength factors are local damping's; under dashpots the same T gives
+        # specimens about 10 % weaker, so the cold start divides T by the structure's
+        # viscous_factor (0.903: UCS x0.911, BTS x0.895, eight seeds) and leaves the rest alone.
+        model = structure()
+        rock = {"kn": 7.25e9, "ks_ratio": 0.503, "ts_ratio": 1.0, "phi_b_deg": 0.0,
+                "diameter_m": 6e-4}
+        targets = {"ucs": 13.8e6, "bts": 2.55e6, "E": 5.5e9, "nu": 0.22}
+        local = rock_structure.cold_start(targets, dict(rock, damping_model="local"), model)
+        viscous = rock_structure.cold_start(targets, dict(rock, damping_model="viscous"), model)
+        self.assertAlmostEqual(viscous["tn"] * model["strength"]["viscous_factor"], local["tn"],
+                               delta=1e-9 * local["tn"])
+        self.assertLess(model["strength"]["viscous_factor"], 0.95)
+        for key in ("kn", "ks_ratio", "ts_ratio", "phi_b_deg"):
+            self.assertEqual(viscous[key], local[key], key)
+        # Table 1's targets on the default rock's discs land on its calibrated T (6.65 kN/m under
+        # local damping, 7.18 kN/m under dashpots) within what eight seeds resolve (5 %).
+        self.assertAlmostEqual(local["tn"] / 6.65e3, 1.0, delta=0.05)
+        self.assertAlmostEqual(viscous["tn"] / 7.18e3, 1.0, delta=0.05)
 
 
 class RoundTrip(unittest.TestCase):

@@ -41,7 +41,6 @@ BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tole
   b.shear_force_.assign(b.i_.size(), 0.0);
   b.normal_force_at_break_.assign(b.i_.size(), 0.0);
   b.broken_.assign(b.i_.size(), 0);
-  b.set_pair_masses(p);
   b.refresh_partners(p.size());
   return b;
 }
@@ -140,6 +139,7 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
 void BondSet::remove_broken(const Particles& p, double time_s, double contact_normal_pa,
                             std::vector<BondBreak>& breaks, std::vector<std::uint32_t>& freed_pairs,
                             EnergyLedger& ledger) {
+  const bool masses = !sqrt_pair_mass_.empty();
   std::size_t keep = 0;
   for (std::size_t k = 0; k < i_.size(); ++k) {
     if (broken_[k]) {
@@ -165,7 +165,7 @@ void BondSet::remove_broken(const Particles& p, double time_s, double contact_no
     i_[keep] = i_[k];
     j_[keep] = j_[k];
     rest_length_[keep] = rest_length_[k];
-    sqrt_pair_mass_[keep] = sqrt_pair_mass_[k];
+    if (masses) sqrt_pair_mass_[keep] = sqrt_pair_mass_[k];
     shear_force_[keep] = shear_force_[k];
     broken_[keep] = 0;
     ++keep;
@@ -173,7 +173,7 @@ void BondSet::remove_broken(const Particles& p, double time_s, double contact_no
   i_.resize(keep);
   j_.resize(keep);
   rest_length_.resize(keep);
-  sqrt_pair_mass_.resize(keep);
+  if (masses) sqrt_pair_mass_.resize(keep);
   shear_force_.resize(keep);
   normal_force_at_break_.resize(keep);
   broken_.resize(keep);

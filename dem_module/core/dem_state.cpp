@@ -37,8 +37,7 @@ void BondSet::save_state(StateArchive& a) const {
   a.put_values("bond_broken", broken_);
 }
 
-void BondSet::load_state(const StateArchive& a, const Particles& p) {
-  const std::size_t particles = p.size();
+void BondSet::load_state(const StateArchive& a, std::size_t particles) {
   a.get_values("bond_i", i_);
   const std::size_t n = i_.size();
   a.get_values("bond_j", j_, n);
@@ -48,7 +47,7 @@ void BondSet::load_state(const StateArchive& a, const Particles& p) {
   a.get_values("bond_broken", broken_, n);
   check_index("bond_i", i_, particles);
   check_index("bond_j", j_, particles);
-  set_pair_masses(p);
+  sqrt_pair_mass_.clear();
   refresh_partners(particles);
 }
 
@@ -173,7 +172,8 @@ void DemSystem::assign_state(const StateArchive& a) {
     throw StateError("state member \"damping_force\" has " + std::to_string(damping_force_.size()) +
                      " values for " + std::to_string(n) + " particles");
   }
-  bonds_.load_state(a, p);
+  bonds_.load_state(a, n);
+  if (settings_.contact.damping_ratio > 0.0) bonds_.set_pair_masses(p);
   contacts_.load_state(a, n);
   walls_.load_state(a, n);
   const auto reactions = a.values("clamped_reaction_y_n_per_m", clamped_.size());

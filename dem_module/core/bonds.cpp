@@ -45,13 +45,6 @@ BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tole
   return b;
 }
 
-void BondSet::set_pair_masses(const Particles& p) {
-  sqrt_pair_mass_.resize(i_.size());
-  for (std::size_t k = 0; k < i_.size(); ++k) {
-    sqrt_pair_mass_[k] = sqrt_effective_mass(p.inv_mass[i_[k]], p.inv_mass[j_[k]]);
-  }
-}
-
 template <bool kDashpots>
 void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,
                            ForceView out, bool& any_broken, double contact_normal_pa,
@@ -60,7 +53,7 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
-  const double* sqrt_m = sqrt_pair_mass_.data();
+  const double* inv_m = p.inv_mass.data();
   const std::uint32_t* bi = i_.data();
   const std::uint32_t* bj = j_.data();
   const double* rest = rest_length_.data();
@@ -112,7 +105,8 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
     shear[k] = fs;
     if constexpr (kDashpots) {
       const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
-      const PairDashpots d = pair_dashpots(cn_scale, ct_scale, sqrt_m[k], vn, vt, dt, dissipated);
+      const PairDashpots d = pair_dashpots(cn_scale, ct_scale, sqrt_effective_mass(inv_m[i], inv_m[j]),
+                                           vn, vt, dt, dissipated);
       const double fn_total = fn + d.normal, fs_total = fs + d.tangential;
       const PairForce f = pair_force(fn_total, fs_total, nx, ny, tx, ty);  // on j
       out.add_pair(i, j, f.fx, f.fy, -fs_total * r[i], -fs_total * r[j]);
@@ -139,7 +133,6 @@ void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::siz
 void BondSet::remove_broken(const Particles& p, double time_s, double contact_normal_pa,
                             std::vector<BondBreak>& breaks, std::vector<std::uint32_t>& freed_pairs,
                             EnergyLedger& ledger) {
-  const bool masses = !sqrt_pair_mass_.empty();
   std::size_t keep = 0;
   for (std::size_t k = 0; k < i_.size(); ++k) {
     if (broken_[k]) {
@@ -165,7 +158,6 @@ void BondSet::remove_broken(const Particles& p, double time_s, double contact_no
     i_[keep] = i_[k];
     j_[keep] = j_[k];
     rest_length_[keep] = rest_length_[k];
-    if (masses) sqrt_pair_mass_[keep] = sqrt_pair_mass_[k];
     shear_force_[keep] = shear_force_[k];
     broken_[keep] = 0;
     ++keep;
@@ -173,7 +165,6 @@ void BondSet::remove_broken(const Particles& p, double time_s, double contact_no
   i_.resize(keep);
   j_.resize(keep);
   rest_length_.resize(keep);
-  if (masses) sqrt_pair_mass_.resize(keep);
   shear_force_.resize(keep);
   normal_force_at_break_.resize(keep);
   broken_.resize(keep);

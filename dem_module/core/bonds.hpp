@@ -53,11 +53,7 @@ class BondSet {
   void refresh_partners(std::size_t n);
   /// Checkpoint (core/dem_state.cpp): the bonds, their springs and broken flags.
   void save_state(state::StateArchive& a) const;
-  /// Leaves the dashpots' pair masses unset: call set_pair_masses() after it where they are on.
   void load_state(const state::StateArchive& a, std::size_t particles);
-  /// Forms each bond's sqrt(m_eff) for its dashpots; compute() with damping_ratio > 0 reads them.
-  /// DemSystem calls it where its dashpots are on, so a scene without them carries no such array.
-  void set_pair_masses(const Particles& p);
 
   // Test access.
   /// Normal force of bond k at the current positions (compression positive) [N/m].
@@ -75,10 +71,6 @@ class BondSet {
   BondLaw law_;
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> rest_length_;
-  /// sqrt(m_eff) of each bond's pair [sqrt(kg/m)], for its dashpots: fixed while the bond lives, so
-  /// formed once (set_pair_masses) instead of a square root and a division per bond and step.
-  /// Empty without dashpots.
-  std::vector<double> sqrt_pair_mass_;
   std::vector<double> shear_force_;   ///< F_t along t = (-n_y, n_x), acting on j [N/m]
   std::vector<double> normal_force_at_break_;  ///< F_n when the bond broke (energy released)
   std::vector<std::uint8_t> broken_;  ///< 0, or 1 + BreakMode

@@ -47,7 +47,6 @@ void BondSet::load_state(const StateArchive& a, std::size_t particles) {
   a.get_values("bond_broken", broken_, n);
   check_index("bond_i", i_, particles);
   check_index("bond_j", j_, particles);
-  sqrt_pair_mass_.clear();
   refresh_partners(particles);
 }
 
@@ -173,7 +172,6 @@ void DemSystem::assign_state(const StateArchive& a) {
                      " values for " + std::to_string(n) + " particles");
   }
   bonds_.load_state(a, n);
-  if (settings_.contact.damping_ratio > 0.0) bonds_.set_pair_masses(p);
   contacts_.load_state(a, n);
   walls_.load_state(a, n);
   const auto reactions = a.values("clamped_reaction_y_n_per_m", clamped_.size());

@@ -33,7 +33,6 @@ DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet b
       bonds_(std::move(bonds)),
       walls_(std::move(walls)) {
   if (settings_.threads < 1) settings_.threads = 1;
-  if (settings_.contact.damping_ratio > 0.0) bonds_.set_pair_masses(particles_);
   has_pairs_ = settings_.contact.normal_stiffness_pa > 0 || bonds_.size() > 0 || !walls_.empty();
   has_body_forces_ = settings_.gravity_x_m_s2 != 0.0 || settings_.gravity_y_m_s2 != 0.0;
   if (settings_.skin_m <= 0) {

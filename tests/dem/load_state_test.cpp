@@ -84,7 +84,8 @@ TEST(LoadState, ARefusedStateLeavesTheSystemAsItWas) {
 
 TEST(LoadState, AGoodStateStillLoads) {
   // The donor has lost bonds before it is saved, so the loaded list is not the one `live` was
-  // built with: what each bond derives from its pair (the dashpots' sqrt(m_eff)) must follow it.
+  // built with, and its discs differ in mass: each loaded bond's springs and dashpots must act on
+  // the pair the archive names.
   DemSystem donor = pressed_block(), live = pressed_block();
   for (int k = 0; k < 500; ++k) donor.step(2e-8);
   ASSERT_LT(donor.bonds().size(), live.bonds().size()) << "the test should load a broken list";

@@ -148,9 +148,9 @@ def main(argv):
     scenes = rock_tests.write_scenes(args.out, start_rock)
     rock = rock_parameters(scenes["ucs"], args.coupler)
     # The damping the tests run under (the starting rock's or a --set's): the rock file keeps it.
-    damping = blocks(without_comments(runs.effective_scene(scenes["ucs"], args.set, args.coupler)),
-                     "damping")
-    model_named = re.search(r'\bmodel\s*:\s*"([^"]*)"', damping[0]) if damping else None
+    damping = next(iter(blocks(without_comments(
+        runs.effective_scene(scenes["ucs"], args.set, args.coupler)), "damping")), None)
+    model_named = re.search(r'\bmodel\s*:\s*"([^"]*)"', damping) if damping else None
     rock["damping_model"] = model_named.group(1) if model_named else "local"
     params = cold_start(targets, rock, model)
     command = "rockcut calibrate " + " ".join(shlex.quote(a) for a in argv)
@@ -203,7 +203,7 @@ def main(argv):
                                             "radius_min_m", "radius_max_m", "density_kg_m3",
                                             "friction")}),
                                         targets, m, e, seeds, command, args.coarse_factor,
-                                        damping[0] if damping else None)
+                                        damping)
     report = [f"# Calibration: {'converged' if done else 'NOT converged'}", "",
               f"`{command}`", "",
               f"{len(rounds)} rounds, {total_runs} runs on seeds {','.join(map(str, seeds))}, "

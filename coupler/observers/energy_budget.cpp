@@ -17,11 +17,13 @@ double get(const NamedValues& scalars, const std::string& key, bool& found) {
 }  // namespace
 
 std::vector<std::pair<const char*, double>> EnergyBudget::terms() const {
-  return {{"boundary_work_j", boundary_work_j}, {"external_work_j", external_work_j},
+  std::vector<std::pair<const char*, double>> terms = {{"boundary_work_j", boundary_work_j}, {"external_work_j", external_work_j},
           {"gravity_work_j", gravity_work_j},   {"damping_j", damping_j},
           {"friction_j", friction_j},           {"broken_bond_j", broken_bond_j},
           {"viscous_damping_j", viscous_damping_j}, {"rolling_j", rolling_j},
           {"kinetic_energy_j", kinetic_energy_j}, {"strain_energy_j", strain_energy_j}};
+  if (viscous_damping_j > 0) terms.push_back({"viscous_damping_bonds_j", viscous_damping_bonds_j});
+  return terms;
 }
 
 double EnergyBudget::initial_j() const {
@@ -56,6 +58,9 @@ std::optional<EnergyBudget> energy_budget(
   if (!found) return std::nullopt;
   // Optional: a DEM without dashpots or rolling springs need not report them.
   if (const double* v = find_value(scalars, "viscous_damping_j")) b.viscous_damping_j = *v;
+  if (const double* v = find_value(scalars, "viscous_damping_bonds_j")) {
+    b.viscous_damping_bonds_j = *v;
+  }
   if (const double* v = find_value(scalars, "rolling_j")) b.rolling_j = *v;
   return b;
 }
@@ -83,7 +88,12 @@ std::string describe(const EnergyBudget& b, const std::string& external) {
     sep = ", ";
   };
   if (b.damping_j > 0 || !(b.viscous_damping_j > 0)) sink("local damping", b.damping_j);
-  if (b.viscous_damping_j > 0) sink("viscous damping", b.viscous_damping_j);
+  if (b.viscous_damping_j > 0) {
+    sink("viscous damping", b.viscous_damping_j);
+    // The bonds' part (never a sink of its own: it is inside the dashpots' share).
+    std::snprintf(buf, sizeof buf, " (bonds %.1f %%)", 100.0 * b.viscous_damping_bonds_j / in);
+    text += buf;
+  }
   sink("friction", b.friction_j);
   if (b.rolling_j > 0) sink("rolling resistance", b.rolling_j);
   if (b.external_work_j < 0) sink(external, -b.external_work_j);

@@ -21,6 +21,9 @@ struct EnergyBudget {
   double friction_j = 0.0;       ///< dissipated by sliding contacts
   double broken_bond_j = 0.0;    ///< strain energy released by broken bonds
   double viscous_damping_j = 0.0;  ///< dissipated by the dashpots (0 from a DEM without them)
+  /// The bonds' part of viscous_damping_j (the intact rock's vibration); the rest is the
+  /// contacts' and the walls' (collisions of loose discs and chips).
+  double viscous_damping_bonds_j = 0.0;
   double rolling_j = 0.0;          ///< dissipated by rolling resistance (likewise)
   double kinetic_energy_j = 0.0;
   double strain_energy_j = 0.0;

@@ -138,6 +138,7 @@ void DemSystem::save_state(StateArchive& a) const {
                                         ledger_.gravity_work_j, ledger_.damping_j,
                                         ledger_.friction_j, ledger_.broken_bond_j,
                                         ledger_.viscous_damping_j, ledger_.rolling_j});
+  a.put_scalar("ledger_viscous_bonds_j", ledger_.viscous_damping_bonds_j);
   a.put_scalar("max_drift_m", max_drift_m_);
   a.put_scalar("dt_last_s", dt_last_);
   a.put_scalar("time_s", time_s_);
@@ -193,6 +194,10 @@ void DemSystem::assign_state(const StateArchive& a) {
   const auto ledger = a.values("ledger_j", 8);
   ledger_ = {ledger[0], ledger[1], ledger[2], ledger[3],
              ledger[4], ledger[5], ledger[6], ledger[7]};
+  // A state written before the dashpots' dissipation was split by where it happens has no such
+  // member: its bonds' part then counts from the resume.
+  ledger_.viscous_damping_bonds_j =
+      a.has("ledger_viscous_bonds_j") ? a.scalar("ledger_viscous_bonds_j") : 0.0;
   max_drift_m_ = a.scalar("max_drift_m");
   dt_last_ = a.scalar("dt_last_s");
   time_s_ = a.scalar("time_s");

@@ -59,6 +59,7 @@ struct alignas(64) ThreadSums {
   double vmax2 = 0.0;  ///< largest v^2 [m^2/s^2]
   double external_work_j = 0.0, gravity_work_j = 0.0, damping_j = 0.0;
   ContactDissipation pairs;  ///< friction, dashpots, rolling springs
+  double bond_viscous_j = 0.0;  ///< the part of pairs.viscous_j taken by the bonds' dashpots
   bool any_broken = false;
 };
 

@@ -17,6 +17,9 @@ struct EnergyLedger {
   double broken_bond_j = 0.0;     ///< released by bond breaks (less what a contact keeps)
   double viscous_damping_j = 0.0; ///< dissipated by the dashpots (>= 0)
   double rolling_j = 0.0;         ///< dissipated by rolling springs cut to their limit (>= 0)
+  /// The part of viscous_damping_j taken by the bonds' dashpots: the intact rock's vibration.
+  /// The rest is the contacts' and the walls' (collisions of loose discs and chips).
+  double viscous_damping_bonds_j = 0.0;
 };
 
 /// What a pass over contacts dissipates [J/m], summed per thread.

@@ -281,6 +281,7 @@ void DemService::report(wire::Message& reply) {
   out["friction_j"] = e.friction_j;
   out["broken_bond_j"] = e.broken_bond_j;
   out["viscous_damping_j"] = e.viscous_damping_j;
+  if (e.viscous_damping_j > 0) out["viscous_damping_bonds_j"] = e.viscous_damping_bonds_j;
   out["rolling_j"] = e.rolling_j;
   out["bonds"] = static_cast<double>(s.bonds().size());
   std::size_t tensile = 0;

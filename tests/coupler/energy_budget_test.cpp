@@ -57,16 +57,24 @@ TEST(EnergyBudget, InitialEnergyAndAGivingExternalForceCountAsInput) {
 
 TEST(EnergyBudget, DashpotsAndRollingResistanceAreSinksOfTheirOwn) {
   // Tool 100 J/m in; dashpots 12, rolling 5, friction 15, bonds 3, kinetic + strain 2, and the
-  // fluid 63: with no local damping its share is left out, the dashpots' named instead.
+  // fluid 63: with no local damping its share is left out, the dashpots' named instead, with
+  // the bonds' part of them (7 of the 12) beside it, not added again.
   auto scalars = ledger(100.0, -63.0, 0.0, 1.0);
   scalars.push_back({"viscous_damping_j", 12.0});
+  scalars.push_back({"viscous_damping_bonds_j", 7.0});
   scalars.push_back({"rolling_j", 5.0});
   const auto b = energy_budget(scalars);
   ASSERT_TRUE(b.has_value());
   EXPECT_EQ(b->initial_j(), 0.0);
   EXPECT_EQ(describe(*b, "pore fluid"),
-            "in: walls and tool 100 J/m; out: viscous damping 12.0 %, friction 15.0 %, rolling "
-            "resistance 5.0 %, pore fluid 63.0 %, broken bonds 3.0 %, kinetic + strain 2.0 %");
+            "in: walls and tool 100 J/m; out: viscous damping 12.0 % (bonds 7.0 %), friction 15.0 %, "
+            "rolling resistance 5.0 %, pore fluid 63.0 %, broken bonds 3.0 %, kinetic + strain "
+            "2.0 %");
+  bool has_bonds_part = false;
+  for (const auto& [key, value] : b->terms()) {
+    if (std::string(key) == "viscous_damping_bonds_j") has_bonds_part = value == 7.0;
+  }
+  EXPECT_TRUE(has_bonds_part);
 }
 
 TEST(EnergyBudget, NoneWithoutTheLedgerAndNothingWhenNothingCameIn) {

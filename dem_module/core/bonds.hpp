@@ -9,6 +9,7 @@
 #include "core/force_buffers.hpp"
 #include "core/interaction_law.hpp"
 #include "core/particles.hpp"
+#include "core/viscous_damping.hpp"
 #include "wire/state_archive.hpp"
 
 namespace rockcut::dem {
@@ -30,19 +31,17 @@ class BondSet {
   /// `out` for bonds [begin, end). A bond whose strength is exceeded breaks now and carries no
   /// force: it is flagged, and remove_broken() records it. A pair that breaks while its discs
   /// overlap gets, in this same evaluation, the normal force of the contact that replaces the bond,
-  /// contact_normal_pa times the overlap (0 without contacts; see remove_broken). With
+  /// contact_normal_pa times the overlap (0 without contacts). With
   /// damping_ratio > 0 each bond has a normal and a tangential dashpot beside its springs
   /// (core/viscous_damping.hpp), whose dissipation is added to `viscous_j`.
   void compute(const Particles& p, double dt, std::size_t begin, std::size_t end, ForceView out,
                bool& any_broken, double contact_normal_pa, double damping_ratio,
                double& viscous_j);
   /// Removes the flagged bonds, appending their breaks (and the pairs, which may now collide) to
-  /// the given lists, and the elastic energy they release to the ledger: the bond's energy less
-  /// the normal energy of the contact spring a compressed pair starts with (contact_normal_pa,
-  /// 0 without contacts), so that a shear break under compression books only what is lost.
-  void remove_broken(const Particles& p, double time_s, double contact_normal_pa,
-                     std::vector<BondBreak>& breaks, std::vector<std::uint32_t>& freed_pairs,
-                     EnergyLedger& ledger);
+  /// the given lists, and the elastic energy they released to the ledger (bond_energy_released,
+  /// core/bond_law.hpp: less what the contact spring of a compressed pair keeps).
+  void remove_broken(const Particles& p, double time_s, std::vector<BondBreak>& breaks,
+                     std::vector<std::uint32_t>& freed_pairs, EnergyLedger& ledger);
 
   /// Elastic energy stored in the bonds at the current positions [J/m].
   double strain_energy(const Particles& p) const;
@@ -51,7 +50,8 @@ class BondSet {
   /// True if i and j are bonded; needs partners() to be current (refresh_partners()).
   bool bonded(std::uint32_t i, std::uint32_t j) const;
   void refresh_partners(std::size_t n);
-  /// Checkpoint (core/dem_state.cpp): the bonds, their springs and broken flags.
+  /// Checkpoint (core/dem_state.cpp): the bonds, their springs, dashpots' last forces and broken
+  /// flags.
   void save_state(state::StateArchive& a) const;
   void load_state(const state::StateArchive& a, std::size_t particles);
 
@@ -72,7 +72,9 @@ class BondSet {
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> rest_length_;
   std::vector<double> shear_force_;   ///< F_t along t = (-n_y, n_x), acting on j [N/m]
-  std::vector<double> normal_force_at_break_;  ///< F_n when the bond broke (energy released)
+  std::vector<double> released_at_break_;  ///< energy a bond released as it broke [J/m]
+  /// The dashpots' forces of the last evaluation (the F^n end of their trapezoid; 0 without).
+  std::vector<PairDashpots> dashpot_;
   std::vector<std::uint8_t> broken_;  ///< 0, or 1 + BreakMode
   std::vector<std::uint32_t> partner_start_, partner_;
 };

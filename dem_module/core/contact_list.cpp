@@ -30,8 +30,9 @@ void ContactList::begin_rebuild(const Particles& p, double skin_m, CellGrid& gri
   // contiguous records.
   history_.clear();
   for (std::size_t k = 0; k < i_.size(); ++k) {
-    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0) {
-      history_.push_back({key(i_[k], j_[k]), shear_force_[k], rolling_moment_[k]});
+    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0 || dashpot_[k].normal != 0.0 ||
+        dashpot_[k].tangential != 0.0) {
+      history_.push_back({key(i_[k], j_[k]), shear_force_[k], rolling_moment_[k], dashpot_[k]});
     }
   }
   std::sort(history_.begin(), history_.end(),
@@ -49,6 +50,7 @@ void ContactList::search(const Particles& p, const BondSet& bonds, double skin_m
   f.j.clear();
   f.shear.clear();
   f.rolling.clear();
+  f.dashpot.clear();
   const double* x = p.position.data();
   const double* r = p.radius.data();
   // The particles in contiguous shares, each in ascending order: joined in thread order, the
@@ -72,6 +74,7 @@ void ContactList::search(const Particles& p, const BondSet& bonds, double skin_m
       const bool known = it != history_.end() && it->key == k;
       f.shear.push_back(known ? it->shear : 0.0);
       f.rolling.push_back(known ? it->rolling : 0.0);
+      f.dashpot.push_back(known ? it->dashpot : PairDashpots{});
     });
   }
 }
@@ -87,6 +90,7 @@ void ContactList::size_join() {
   j_.resize(total);
   shear_force_.resize(total);
   rolling_moment_.resize(total);
+  dashpot_.resize(total);
 }
 
 void ContactList::join(int t) {
@@ -96,6 +100,7 @@ void ContactList::join(int t) {
   std::copy(f.j.begin(), f.j.end(), j_.begin() + at);
   std::copy(f.shear.begin(), f.shear.end(), shear_force_.begin() + at);
   std::copy(f.rolling.begin(), f.rolling.end(), rolling_moment_.begin() + at);
+  std::copy(f.dashpot.begin(), f.dashpot.end(), dashpot_.begin() + at);
 }
 
 void ContactList::add_pairs(const std::vector<std::uint32_t>& pairs) {
@@ -104,6 +109,7 @@ void ContactList::add_pairs(const std::vector<std::uint32_t>& pairs) {
     j_.push_back(std::max(pairs[k], pairs[k + 1]));
     shear_force_.push_back(0.0);
     rolling_moment_.push_back(0.0);
+    dashpot_.push_back(PairDashpots{});
   }
 }
 
@@ -127,8 +133,27 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
     const double rsum = r[i] + r[j];
     const double d2 = dx * dx + dy * dy;
     if (d2 >= rsum * rsum) {
-      shear_force_[k] = 0.0;  // apart: the tangential spring is released
-      if constexpr (kRolling) rolling_moment_[k] = 0.0;
+      // Apart: the normal force, and with it the Coulomb limit, fell to zero within the drift.
+      // A pair that was touching releases its springs and dashpots, each booked as they left
+      // the kick (only those: the rest of the skin's pairs skip this).
+      const bool was_touching =
+          shear_force_[k] != 0.0 || (kRolling && rolling_moment_[k] != 0.0) ||
+          (kDashpots && (dashpot_[k].normal != 0.0 || dashpot_[k].tangential != 0.0));
+      if (was_touching) {
+        const double len = std::sqrt(d2);
+        const double nx = dx / len, ny = dy / len;
+        const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1],
+                                                nx, ny, w[i] * r[i], w[j] * r[j]);
+        release_on_opening(shear_force_[k], ks, vt * dt, friction);
+        if constexpr (kRolling) {
+          const double rr = rolling_radius(r[i], r[j]);
+          rolling_released(rolling_moment_[k], ks * rr * rr, w[i] - w[j], dt, rolling);
+        }
+        if constexpr (kDashpots) {
+          const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
+          dashpots_released(dashpot_[k], vn, vt, dt, viscous);
+        }
+      }
       continue;
     }
     const double len = std::sqrt(d2);
@@ -138,7 +163,7 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
     const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], nx,
                                             ny, w[i] * r[i], w[j] * r[j]);
     const double trial = shear_spring_update(shear_force_[k], ks, vt, dt);
-    const double fs = coulomb_limited(trial, mu * fn, ks, friction);
+    const double fs = coulomb_limited(shear_force_[k], trial, mu * fn, ks, friction);
     shear_force_[k] = fs;
     double moment_i = -fs * r[i], moment_j = -fs * r[j];
     if constexpr (kRolling) {
@@ -156,7 +181,7 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
       const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
       const PairDashpots d = pair_dashpots(cn_scale, fs == trial ? ct_scale : 0.0,
                                            sqrt_effective_mass(inv_m[i], inv_m[j]), vn, vt, dt,
-                                           viscous);
+                                           dashpot_[k], viscous);
       const PairForce f = pair_force(fn + d.normal, fs + d.tangential, nx, ny, tx, ty);
       out.add_pair(i, j, f.fx, f.fy, moment_i - d.tangential * r[i],
                    moment_j - d.tangential * r[j]);

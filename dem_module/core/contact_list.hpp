@@ -10,6 +10,7 @@
 #include "core/force_buffers.hpp"
 #include "core/interaction_law.hpp"
 #include "core/particles.hpp"
+#include "core/viscous_damping.hpp"
 #include "wire/state_archive.hpp"
 
 namespace rockcut::dem {
@@ -43,7 +44,8 @@ class ContactList {
   double strain_energy(const Particles& p, const ContactLaw& law) const;
 
   std::size_t size() const { return i_.size(); }
-  /// Checkpoint (core/dem_state.cpp): the pairs in list order and their tangential history.
+  /// Checkpoint (core/dem_state.cpp): the pairs in list order, their tangential history and
+  /// their dashpots' last forces.
   void save_state(state::StateArchive& a) const;
   void load_state(const state::StateArchive& a, std::size_t particles);
   std::uint32_t first(std::size_t k) const { return i_[k]; }
@@ -57,16 +59,20 @@ class ContactList {
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> shear_force_;  ///< along t = (-n_y, n_x), acting on j [N/m]
   std::vector<double> rolling_moment_;  ///< rolling spring's moment on i [N m/m] (0 without)
+  /// The dashpots' forces of the last evaluation (the F^n end of their trapezoid; 0 without).
+  std::vector<PairDashpots> dashpot_;
   // Rebuild scratch, kept to avoid allocating in steady state. The tangential history of the
   // listed pairs, sorted by pair for the search's lookups.
   struct History {
     std::uint64_t key;
     double shear, rolling;
+    PairDashpots dashpot;
   };
   std::vector<History> history_;
   struct Found {  // one thread's pairs in search()
     std::vector<std::uint32_t> i, j;
     std::vector<double> shear, rolling;
+    std::vector<PairDashpots> dashpot;
   };
   std::vector<Found> found_;
   std::vector<std::size_t> offset_;  // where each thread's pairs go in the joined list

@@ -2,7 +2,8 @@
 // next bit. A run resumed from it continues bit for bit as the run that wrote it: the particle
 // arrays, the bonds with their shear springs, the contacts in list order with their tangential
 // history (the order of the pair sums), the walls' offsets and listed pairs, the damping forces of
-// the last evaluation (the F^n half of the damping trapezoid), the ledger, the breaks, and the
+// the last evaluation (the F^n half of the damping trapezoid) and each pair's dashpots' last
+// forces (the same for the dashpots), the ledger, the breaks, and the
 // drift since the last neighbour-list rebuild (so the next rebuild comes at the same step).
 // What the scene rebuilds at Init (radii, masses, settings, segments) is not saved.
 #include <stdexcept>
@@ -16,6 +17,24 @@ using state::StateArchive;
 using state::StateError;
 
 namespace {
+
+// The dashpots' last forces (PairDashpots: normal, tangential) as a two-component member.
+void put_dashpots(StateArchive& a, std::string_view name, const std::vector<PairDashpots>& d) {
+  std::vector<double> v;
+  v.reserve(2 * d.size());
+  for (const PairDashpots& f : d) v.insert(v.end(), {f.normal, f.tangential});
+  a.put(name, std::move(v), 2);
+}
+
+// A state written before the dashpots' trapezoid kept their last forces has none: they start at
+// zero, which books the first step after the resume as if the pairs had just met.
+void get_dashpots(const StateArchive& a, std::string_view name, std::vector<PairDashpots>& d,
+                  std::size_t n) {
+  d.assign(n, PairDashpots{});
+  if (!a.has(name)) return;
+  const auto v = a.values(name, 2 * n);
+  for (std::size_t k = 0; k < n; ++k) d[k] = PairDashpots{v[2 * k], v[2 * k + 1]};
+}
 
 void check_index(std::string_view what, const std::vector<std::uint32_t>& v, std::size_t limit) {
   for (std::uint32_t i : v) {
@@ -33,8 +52,9 @@ void BondSet::save_state(StateArchive& a) const {
   a.put_values("bond_j", j_);
   a.put("bond_rest_length_m", rest_length_);
   a.put("bond_shear_force_n_per_m", shear_force_);
-  a.put("bond_normal_force_at_break_n_per_m", normal_force_at_break_);
+  a.put("bond_released_at_break_j", released_at_break_);
   a.put_values("bond_broken", broken_);
+  put_dashpots(a, "bond_dashpot_force_n_per_m", dashpot_);
 }
 
 void BondSet::load_state(const StateArchive& a, std::size_t particles) {
@@ -43,8 +63,12 @@ void BondSet::load_state(const StateArchive& a, std::size_t particles) {
   a.get_values("bond_j", j_, n);
   a.get("bond_rest_length_m", rest_length_, n);
   a.get("bond_shear_force_n_per_m", shear_force_, n);
-  a.get("bond_normal_force_at_break_n_per_m", normal_force_at_break_, n);
+  // Breaks are removed within the step that flags them, so a checkpoint holds none flagged; a
+  // state written under the member's former name (the normal force at the break) loads zeros.
+  released_at_break_.assign(n, 0.0);
+  if (a.has("bond_released_at_break_j")) a.get("bond_released_at_break_j", released_at_break_, n);
   a.get_values("bond_broken", broken_, n);
+  get_dashpots(a, "bond_dashpot_force_n_per_m", dashpot_, n);
   check_index("bond_i", i_, particles);
   check_index("bond_j", j_, particles);
   refresh_partners(particles);
@@ -55,6 +79,7 @@ void ContactList::save_state(StateArchive& a) const {
   a.put_values("contact_j", j_);
   a.put("contact_shear_force_n_per_m", shear_force_);
   a.put("contact_rolling_moment_n", rolling_moment_);
+  put_dashpots(a, "contact_dashpot_force_n_per_m", dashpot_);
 }
 
 void ContactList::load_state(const StateArchive& a, std::size_t particles) {
@@ -62,6 +87,7 @@ void ContactList::load_state(const StateArchive& a, std::size_t particles) {
   a.get_values("contact_j", j_, i_.size());
   a.get("contact_shear_force_n_per_m", shear_force_, i_.size());
   a.get("contact_rolling_moment_n", rolling_moment_, i_.size());
+  get_dashpots(a, "contact_dashpot_force_n_per_m", dashpot_, i_.size());
   check_index("contact_i", i_, particles);
   check_index("contact_j", j_, particles);
 }
@@ -82,6 +108,7 @@ void WallSet::save_state(StateArchive& a) const {
   a.put_values("wall_pair_segment", segment_);
   a.put("wall_pair_shear_force_n_per_m", shear_force_);
   a.put("wall_pair_rolling_moment_n", rolling_moment_);
+  put_dashpots(a, "wall_pair_dashpot_force_n_per_m", dashpot_);
 }
 
 void WallSet::load_state(const StateArchive& a, std::size_t particles) {
@@ -103,6 +130,7 @@ void WallSet::load_state(const StateArchive& a, std::size_t particles) {
   a.get_values("wall_pair_segment", segment_, particle_.size());
   a.get("wall_pair_shear_force_n_per_m", shear_force_, particle_.size());
   a.get("wall_pair_rolling_moment_n", rolling_moment_, particle_.size());
+  get_dashpots(a, "wall_pair_dashpot_force_n_per_m", dashpot_, particle_.size());
   check_index("wall_pair_particle", particle_, particles);
   check_index("wall_pair_segment", segment_, segments_.size());
 }

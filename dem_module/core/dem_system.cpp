@@ -348,8 +348,7 @@ void DemSystem::compute_internal_forces() {
 
 void DemSystem::remove_broken_bonds() {
   freed_pairs_.clear();
-  bonds_.remove_broken(particles_, time_s_, settings_.contact.normal_stiffness_pa, breaks_,
-                       freed_pairs_, ledger_);
+  bonds_.remove_broken(particles_, time_s_, breaks_, freed_pairs_, ledger_);
   if (settings_.contact.normal_stiffness_pa > 0) contacts_.add_pairs(freed_pairs_);
   update_force_windows();  // the shares of the lists have moved
 }

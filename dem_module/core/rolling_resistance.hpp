@@ -6,7 +6,8 @@
 // disc i (-M_r on j) and F_n the normal spring's force. It resists relative rolling, the motion
 // a contact's shear spring cannot see (grains rolling over each other and up the rake face), and
 // leaves a rigid rotation (w_i = w_j) alone. Where the moment is cut back to the limit, the cut
-// is dissipated, like Coulomb friction's (core/contact_law.hpp); the spring stores M_r^2 / (2 k_r).
+// is dissipated and booked as Coulomb friction's is (core/contact_law.hpp); the spring stores
+// M_r^2 / (2 k_r).
 // always_inline: the step loops call these per pair.
 #pragma once
 
@@ -24,10 +25,20 @@ namespace rockcut::dem {
                                                            double& dissipated_j) {
   double m = moment - kr * w_rel * dt;
   if (std::abs(m) > limit) {
-    dissipated_j += limit * (std::abs(m) - limit) / kr;
-    m = std::copysign(limit, m);
+    // As coulomb_limited (core/contact_law.hpp): the kick's trapezoid less the spring's change.
+    const double after = std::copysign(limit, m);
+    dissipated_j += 0.5 * (moment + after) * (m - after) / kr;
+    m = after;
   }
   return m;
+}
+
+/// A contact that opens: the rolling spring slides off as its limit falls to zero (as
+/// release_on_opening, core/contact_law.hpp); books it and clears `moment`.
+[[gnu::always_inline]] inline void rolling_released(double& moment, double kr, double w_rel,
+                                                    double dt, double& dissipated_j) {
+  dissipated_j += 0.5 * moment * (moment - kr * w_rel * dt) / kr;
+  moment = 0.0;
 }
 
 /// Elastic energy [J/m] of a rolling spring of stiffness kr carrying `moment`.

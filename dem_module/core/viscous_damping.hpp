@@ -47,18 +47,44 @@ inline double dashpot_scale(double zeta, double stiffness_pa) { return 2.0 * zet
 
 /// The normal and the tangential dashpot of one pair (bond, contact, disc and wall).
 struct PairDashpots {
-  double normal, tangential;  ///< [N/m], compression positive and along t
+  double normal = 0.0, tangential = 0.0;  ///< [N/m], compression positive and along t
 };
 
+/// What a pair's dashpots dissipated over the drift into this evaluation [J/m]: velocity Verlet
+/// moved the pair at the half-step velocities (vn, vt) under the mean of the dashpots' forces of
+/// the last evaluation (`before`) and of this one (`now`), the trapezoid the ledger books every
+/// other force's work with (core/energy.hpp):
+///   -(F_before + F_now) / 2 . v dt.
+/// Booking c v^2 dt (the second half twice) left the ledger open by a share growing with zeta.
+[[gnu::always_inline]] inline double dashpot_dissipation(const PairDashpots& before,
+                                                         const PairDashpots& now, double vn,
+                                                         double vt, double dt) {
+  return -0.5 * ((before.normal + now.normal) * vn + (before.tangential + now.tangential) * vt) *
+         dt;
+}
+
 /// Both dashpots of a pair with sqrt(m_eff) `sqrt_m` at relative velocities vn, vt, their
-/// coefficients dashpot_scale() x sqrt_m (ct_scale 0: no tangential dashpot, a sliding contact);
-/// adds their dissipation over dt, c v^2 dt, to `dissipated_j`.
+/// coefficients dashpot_scale() x sqrt_m (ct_scale 0: no tangential dashpot, a sliding contact).
+/// `before` holds the pair's dashpot forces of the last evaluation and is replaced by these; their
+/// dissipation over the drift (dashpot_dissipation) is added to `dissipated_j`.
 [[gnu::always_inline]] inline PairDashpots pair_dashpots(double cn_scale, double ct_scale,
                                                         double sqrt_m, double vn, double vt,
-                                                        double dt, double& dissipated_j) {
+                                                        double dt, PairDashpots& before,
+                                                        double& dissipated_j) {
   const double cn = cn_scale * sqrt_m, ct = ct_scale * sqrt_m;
-  dissipated_j += (cn * vn * vn + ct * vt * vt) * dt;
-  return {dashpot_force(cn, vn), dashpot_force(ct, vt)};
+  const PairDashpots now{dashpot_force(cn, vn), dashpot_force(ct, vt)};
+  dissipated_j += dashpot_dissipation(before, now, vn, vt, dt);
+  before = now;
+  return now;
+}
+
+/// A pair whose dashpots stop acting in this evaluation (a contact that opens, a bond that
+/// breaks): over the drift into it they acted with `before` alone, the trapezoid's other end
+/// being zero. Books that and clears `before`.
+[[gnu::always_inline]] inline void dashpots_released(PairDashpots& before, double vn, double vt,
+                                                     double dt, double& dissipated_j) {
+  dissipated_j += dashpot_dissipation(before, PairDashpots{0.0, 0.0}, vn, vt, dt);
+  before = PairDashpots{0.0, 0.0};
 }
 
 }  // namespace rockcut::dem

@@ -63,17 +63,21 @@ void WallSet::rebuild(const Particles& p, double skin_m) {
   old_keys_.clear();
   old_shear_.clear();
   old_rolling_.clear();
+  old_dashpot_.clear();
   for (std::size_t k = 0; k < particle_.size(); ++k) {
-    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0) {
+    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0 || dashpot_[k].normal != 0.0 ||
+        dashpot_[k].tangential != 0.0) {
       old_keys_.push_back((static_cast<std::uint64_t>(segment_[k]) << 32) | particle_[k]);
       old_shear_.push_back(shear_force_[k]);
       old_rolling_.push_back(rolling_moment_[k]);
+      old_dashpot_.push_back(dashpot_[k]);
     }
   }
   particle_.clear();
   segment_.clear();
   shear_force_.clear();
   rolling_moment_.clear();
+  dashpot_.clear();
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     offset_at_rebuild_[2 * b] = bodies_[b].offset_x;
     offset_at_rebuild_[2 * b + 1] = bodies_[b].offset_y;
@@ -98,6 +102,7 @@ void WallSet::rebuild(const Particles& p, double skin_m) {
       const auto at = static_cast<std::size_t>(it - old_keys_.begin());
       shear_force_.push_back(known ? old_shear_[at] : 0.0);
       rolling_moment_.push_back(known ? old_rolling_[at] : 0.0);
+      dashpot_.push_back(known ? old_dashpot_[at] : PairDashpots{});
     }
   }
 }
@@ -118,8 +123,25 @@ void WallSet::compute_impl(const Particles& p, const ContactLaw& law, double dt,
     const double dx = px - c.qx, dy = py - c.qy;
     const double d2 = dx * dx + dy * dy;
     if (d2 >= r * r || d2 == 0.0) {
-      shear_force_[k] = 0.0;
-      if constexpr (kRolling) rolling_moment_[k] = 0.0;
+      // Apart: springs and dashpots released as a contact's are (ContactList::compute_impl).
+      const bool was_touching =
+          shear_force_[k] != 0.0 || (kRolling && rolling_moment_[k] != 0.0) ||
+          (kDashpots && (dashpot_[k].normal != 0.0 || dashpot_[k].tangential != 0.0));
+      if (was_touching) {
+        const double dist = std::sqrt(d2);
+        const double nx = d2 > 0.0 ? dx / dist : 0.0, ny = d2 > 0.0 ? dy / dist : 0.0;
+        const double dvx = p.velocity[2 * i] - b.velocity_x;
+        const double dvy = p.velocity[2 * i + 1] - b.velocity_y;
+        const double vt = shear_spring_velocity(dvx, dvy, nx, ny, p.angular_velocity[i] * r, 0.0);
+        release_on_opening(shear_force_[k], ks, vt * dt, sums.friction_j);
+        if constexpr (kRolling) {
+          rolling_released(rolling_moment_[k], ks * r * r, p.angular_velocity[i], dt,
+                           sums.rolling_j);
+        }
+        if constexpr (kDashpots) {
+          dashpots_released(dashpot_[k], dvx * nx + dvy * ny, vt, dt, sums.viscous_j);
+        }
+      }
       continue;
     }
     const double dist = std::sqrt(d2);
@@ -131,7 +153,7 @@ void WallSet::compute_impl(const Particles& p, const ContactLaw& law, double dt,
     const double vt = shear_spring_velocity(dvx, dvy, nx, ny, p.angular_velocity[i] * r, 0.0);
     const double limit = (b.friction >= 0.0 ? b.friction : mu) * fn;
     const double trial = shear_spring_update(shear_force_[k], ks, vt, dt);
-    const double fs = coulomb_limited(trial, limit, ks, sums.friction_j);
+    const double fs = coulomb_limited(shear_force_[k], trial, limit, ks, sums.friction_j);
     shear_force_[k] = fs;
     double moment = -fs * r;
     if constexpr (kRolling) {  // against a wall R_r = r and w_j = 0
@@ -145,7 +167,8 @@ void WallSet::compute_impl(const Particles& p, const ContactLaw& law, double dt,
     if constexpr (kDashpots) {  // as the contacts' (core/contact_list.cpp), m_eff = m_i
       const PairDashpots d = pair_dashpots(cn_scale, fs == trial ? ct_scale : 0.0,
                                            sqrt_effective_mass(p.inv_mass[i], 0.0),
-                                           dvx * nx + dvy * ny, vt, dt, sums.viscous_j);
+                                           dvx * nx + dvy * ny, vt, dt, dashpot_[k],
+                                           sums.viscous_j);
       fn_total += d.normal;
       fs_total += d.tangential;
       moment -= d.tangential * r;

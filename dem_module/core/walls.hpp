@@ -11,6 +11,7 @@
 #include "core/force_buffers.hpp"
 #include "core/interaction_law.hpp"
 #include "core/particles.hpp"
+#include "core/viscous_damping.hpp"
 #include "wire/state_archive.hpp"
 
 namespace rockcut::dem {
@@ -78,8 +79,11 @@ class WallSet {
   std::vector<std::uint32_t> particle_, segment_;
   std::vector<double> shear_force_;
   std::vector<double> rolling_moment_;  ///< rolling spring's moment on the disc [N m/m]
+  /// The dashpots' forces of the last evaluation (the F^n end of their trapezoid; 0 without).
+  std::vector<PairDashpots> dashpot_;
   std::vector<std::uint64_t> old_keys_;  // rebuild scratch
   std::vector<double> old_shear_, old_rolling_;
+  std::vector<PairDashpots> old_dashpot_;
 };
 
 }  // namespace rockcut::dem

@@ -59,6 +59,8 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   const std::uint32_t* bj = j_.data();
   const double* rest = rest_length_.data();
   double* shear = shear_force_.data();
+  PairDashpots* dashpot = dashpot_.data();  // hoisted as the others: the stores through `out`
+                                            // would make the loop reload a member's pointer
   const double kn = law_.normal_stiffness_pa, ks_dt = law_.shear_stiffness_pa * dt;
   const double tn = law_.tensile_strength_n_per_m, ts = law_.shear_strength_n_per_m;
   const double tan_phi_b = law_.friction_coefficient;
@@ -84,42 +86,16 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
     // Perfectly brittle: exceeding a strength breaks the bond in this evaluation, with no force.
     // The strengths bound the springs' forces; the dashpots beside them do not break a bond.
     const double ts_fn = bond_shear_strength(ts, tan_phi_b, fn);
-    if (bond_breaks(fn, fs, tn, ts_fn)) {
-      broken_[k] = 1 + static_cast<std::uint8_t>(bond_break_mode(fn, fs, tn, ts_fn));
+    if (bond_breaks(fn, fs, tn, ts_fn)) [[unlikely]] {
+      break_now<kDashpots>(k, p, dt, fn, fs, ts_fn, out, contact_normal_pa, dissipated);
       broke = true;
-      // The springs' forces of the last evaluation: the shear spring's as stored, the normal
-      // one's at the length before the drift (x^n = x^{n+1} - v^{n+1/2} dt).
-      const double rel_vx = v[2 * j] - v[2 * i], rel_vy = v[2 * j + 1] - v[2 * i + 1];
-      const double fn_before = bond_normal_force(
-          kn, rest[k], std::hypot(dx - rel_vx * dt, dy - rel_vy * dt));
-      const double fs_before = shear[k];
-      shear[k] = fs;
-      if constexpr (kDashpots) {  // they acted over the drift into this evaluation
-        const double vn = rel_vx * nx + rel_vy * ny;
-        dashpots_released(dashpot_[k], vn, vt, dt, dissipated);
-      }
-      // The contact spring that replaces the bond acts from this evaluation on. Left for the next
-      // one (the pair joins the contact list only in remove_broken), a pair pressed together
-      // carried no normal force for one step, and the drift over that step and the next did work
-      // on the discs that no spring stored: the ledger of a crushed hexagonal lattice, whose
-      // shear breaks happen under large compression, closed only to 2 % (1 % without clamped
-      // ends; tests/integration/energy_ledger_test.cpp). The ledger books what the bond released
-      // less what this contact keeps (bond_energy_released), so the normal energy passes on.
-      const double overlap = r[i] + r[j] - len;
-      double fc = 0.0;
-      if (contact_normal_pa > 0.0 && overlap > 0.0) {
-        fc = contact_normal_force(contact_normal_pa, overlap);
-        out.add_pair(i, j, fc * nx, fc * ny, 0.0, 0.0);
-      }
-      released_at_break_[k] = bond_energy_released(fn_before, fn, fc, fs_before, fs, kn,
-                                                   law_.shear_stiffness_pa, contact_normal_pa);
       continue;
     }
     shear[k] = fs;
     if constexpr (kDashpots) {
       const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
       const PairDashpots d = pair_dashpots(cn_scale, ct_scale, sqrt_effective_mass(inv_m[i], inv_m[j]),
-                                           vn, vt, dt, dashpot_[k], dissipated);
+                                           vn, vt, dt, dashpot[k], dissipated);
       const double fn_total = fn + d.normal, fs_total = fs + d.tangential;
       const PairForce f = pair_force(fn_total, fs_total, nx, ny, tx, ty);  // on j
       out.add_pair(i, j, f.fx, f.fy, -fs_total * r[i], -fs_total * r[j]);
@@ -130,6 +106,52 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   }
   if (broke) any_broken = true;
   viscous_j += dissipated;
+}
+
+template <bool kDashpots>
+void BondSet::break_now(std::size_t k, const Particles& p, double dt, double fn, double fs,
+                        double ts_fn, ForceView out, double contact_normal_pa,
+                        double& dissipated_j) {
+  // The geometry again, as compute_impl formed it (the same expressions, the same bits).
+  const double* x = p.position.data();
+  const double* v = p.velocity.data();
+  const double* w = p.angular_velocity.data();
+  const double* r = p.radius.data();
+  const std::uint32_t i = i_[k], j = j_[k];
+  const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
+  const double len = std::sqrt(dx * dx + dy * dy);
+  const double inv_len = 1.0 / len;
+  const double nx = dx * inv_len, ny = dy * inv_len;
+  const double kn = law_.normal_stiffness_pa;
+  broken_[k] = 1 + static_cast<std::uint8_t>(
+                       bond_break_mode(fn, fs, law_.tensile_strength_n_per_m, ts_fn));
+  // The springs' forces of the last evaluation: the shear spring's as stored, the normal one's at
+  // the length before the drift (x^n = x^{n+1} - v^{n+1/2} dt).
+  const double rel_vx = v[2 * j] - v[2 * i], rel_vy = v[2 * j + 1] - v[2 * i + 1];
+  const double dx_before = dx - rel_vx * dt, dy_before = dy - rel_vy * dt;
+  const double fn_before =
+      bond_normal_force(kn, rest_length_[k], std::sqrt(dx_before * dx_before + dy_before * dy_before));
+  const double fs_before = shear_force_[k];
+  shear_force_[k] = fs;
+  if constexpr (kDashpots) {  // they acted over the drift into this evaluation
+    const double vt = shear_spring_velocity(rel_vx, rel_vy, nx, ny, w[i] * r[i], w[j] * r[j]);
+    dashpots_released(dashpot_[k], rel_vx * nx + rel_vy * ny, vt, dt, dissipated_j);
+  }
+  // The contact spring that replaces the bond acts from this evaluation on. Left for the next
+  // one (the pair joins the contact list only in remove_broken), a pair pressed together carried
+  // no normal force for one step, and the drift over that step and the next did work on the discs
+  // that no spring stored: the ledger of a crushed hexagonal lattice, whose shear breaks happen
+  // under large compression, closed only to 2 % (1 % without clamped ends;
+  // tests/integration/energy_ledger_test.cpp). The ledger books what the bond released less what
+  // this contact keeps (bond_energy_released), so the normal energy passes on.
+  const double overlap = r[i] + r[j] - len;
+  double fc = 0.0;
+  if (contact_normal_pa > 0.0 && overlap > 0.0) {
+    fc = contact_normal_force(contact_normal_pa, overlap);
+    out.add_pair(i, j, fc * nx, fc * ny, 0.0, 0.0);
+  }
+  released_at_break_[k] = bond_energy_released(fn_before, fn, fc, fs_before, fs, kn,
+                                               law_.shear_stiffness_pa, contact_normal_pa);
 }
 
 void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::size_t end,

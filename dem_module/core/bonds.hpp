@@ -68,6 +68,14 @@ class BondSet {
                     ForceView out, bool& any_broken, double contact_normal_pa,
                     double damping_ratio, double& viscous_j);
 
+  /// Bond k breaks in this evaluation (at F_n `fn`, trial shear `fs`, shear strength `ts_fn`):
+  /// flagged, its release and its dashpots' last work booked, the contact's normal force of a
+  /// pressed pair added. Out of the pair loop (cold): inlined, it slowed every bond's step.
+  template <bool kDashpots>
+  [[gnu::cold, gnu::noinline]] void break_now(std::size_t k, const Particles& p, double dt,
+                                              double fn, double fs, double ts_fn, ForceView out,
+                                              double contact_normal_pa, double& dissipated_j);
+
   BondLaw law_;
   std::vector<std::uint32_t> i_, j_;
   std::vector<double> rest_length_;

@@ -127,6 +127,10 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
   const double ct_scale = kDashpots ? dashpot_scale(law.damping_ratio, ks) : 0.0;
   const double mu_r = law.rolling_friction;
   double friction = 0.0, viscous = 0.0, rolling = 0.0;
+  // The per-pair arrays hoisted: the stores through `out` would make the loop reload them.
+  double* shear = shear_force_.data();
+  double* rolling_moment = rolling_moment_.data();
+  PairDashpots* dashpot = dashpot_.data();
   for (std::size_t k = begin; k < end; ++k) {
     const std::uint32_t i = i_[k], j = j_[k];
     const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
@@ -137,21 +141,21 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
       // A pair that was touching releases its springs and dashpots, each booked as they left
       // the kick (only those: the rest of the skin's pairs skip this).
       const bool was_touching =
-          shear_force_[k] != 0.0 || (kRolling && rolling_moment_[k] != 0.0) ||
-          (kDashpots && (dashpot_[k].normal != 0.0 || dashpot_[k].tangential != 0.0));
+          shear[k] != 0.0 || (kRolling && rolling_moment[k] != 0.0) ||
+          (kDashpots && (dashpot[k].normal != 0.0 || dashpot[k].tangential != 0.0));
       if (was_touching) {
         const double len = std::sqrt(d2);
         const double nx = dx / len, ny = dy / len;
         const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1],
                                                 nx, ny, w[i] * r[i], w[j] * r[j]);
-        release_on_opening(shear_force_[k], ks, vt * dt, friction);
+        release_on_opening(shear[k], ks, vt * dt, friction);
         if constexpr (kRolling) {
           const double rr = rolling_radius(r[i], r[j]);
-          rolling_released(rolling_moment_[k], ks * rr * rr, w[i] - w[j], dt, rolling);
+          rolling_released(rolling_moment[k], ks * rr * rr, w[i] - w[j], dt, rolling);
         }
         if constexpr (kDashpots) {
           const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
-          dashpots_released(dashpot_[k], vn, vt, dt, viscous);
+          dashpots_released(dashpot[k], vn, vt, dt, viscous);
         }
       }
       continue;
@@ -162,15 +166,15 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
     const double fn = contact_normal_force(kn, rsum - len);
     const double vt = shear_spring_velocity(v[2 * j] - v[2 * i], v[2 * j + 1] - v[2 * i + 1], nx,
                                             ny, w[i] * r[i], w[j] * r[j]);
-    const double trial = shear_spring_update(shear_force_[k], ks, vt, dt);
-    const double fs = coulomb_limited(shear_force_[k], trial, mu * fn, ks, friction);
-    shear_force_[k] = fs;
+    const double trial = shear_spring_update(shear[k], ks, vt, dt);
+    const double fs = coulomb_limited(shear[k], trial, mu * fn, ks, friction);
+    shear[k] = fs;
     double moment_i = -fs * r[i], moment_j = -fs * r[j];
     if constexpr (kRolling) {
       const double rr = rolling_radius(r[i], r[j]);
-      const double m = rolling_moment_update(rolling_moment_[k], ks * rr * rr, w[i] - w[j], dt,
+      const double m = rolling_moment_update(rolling_moment[k], ks * rr * rr, w[i] - w[j], dt,
                                              mu_r * rr * fn, rolling);
-      rolling_moment_[k] = m;
+      rolling_moment[k] = m;
       moment_i += m;
       moment_j -= m;
     }
@@ -181,7 +185,7 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
       const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
       const PairDashpots d = pair_dashpots(cn_scale, fs == trial ? ct_scale : 0.0,
                                            sqrt_effective_mass(inv_m[i], inv_m[j]), vn, vt, dt,
-                                           dashpot_[k], viscous);
+                                           dashpot[k], viscous);
       const PairForce f = pair_force(fn + d.normal, fs + d.tangential, nx, ny, tx, ty);
       out.add_pair(i, j, f.fx, f.fy, moment_i - d.tangential * r[i],
                    moment_j - d.tangential * r[j]);

@@ -42,7 +42,7 @@ inline double dashpot_scale(double zeta, double stiffness_pa) { return 2.0 * zet
 }
 
 /// A dashpot's force [N/m] (compression or along t, as the spring it sits beside) at relative
-/// velocity v [m/s] with coefficient c [kg/(m s)]; its dissipation over dt is c v^2 dt.
+/// velocity v [m/s] with coefficient c [kg/(m s)] (what it dissipates: dashpot_dissipation).
 [[gnu::always_inline]] inline double dashpot_force(double c, double velocity) { return -c * velocity; }
 
 /// The normal and the tangential dashpot of one pair (bond, contact, disc and wall).

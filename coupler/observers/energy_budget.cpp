@@ -17,7 +17,8 @@ double get(const NamedValues& scalars, const std::string& key, bool& found) {
 }  // namespace
 
 std::vector<std::pair<const char*, double>> EnergyBudget::terms() const {
-  std::vector<std::pair<const char*, double>> terms = {{"boundary_work_j", boundary_work_j}, {"external_work_j", external_work_j},
+  std::vector<std::pair<const char*, double>> terms = {
+          {"boundary_work_j", boundary_work_j}, {"external_work_j", external_work_j},
           {"gravity_work_j", gravity_work_j},   {"damping_j", damping_j},
           {"friction_j", friction_j},           {"broken_bond_j", broken_bond_j},
           {"viscous_damping_j", viscous_damping_j}, {"rolling_j", rolling_j},

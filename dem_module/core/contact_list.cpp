@@ -30,8 +30,7 @@ void ContactList::begin_rebuild(const Particles& p, double skin_m, CellGrid& gri
   // contiguous records.
   history_.clear();
   for (std::size_t k = 0; k < i_.size(); ++k) {
-    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0 || dashpot_[k].normal != 0.0 ||
-        dashpot_[k].tangential != 0.0) {
+    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0 || dashpot_[k].any()) {
       history_.push_back({key(i_[k], j_[k]), shear_force_[k], rolling_moment_[k], dashpot_[k]});
     }
   }
@@ -142,7 +141,7 @@ void ContactList::compute_impl(const Particles& p, const ContactLaw& law, double
       // the kick (only those: the rest of the skin's pairs skip this).
       const bool was_touching =
           shear[k] != 0.0 || (kRolling && rolling_moment[k] != 0.0) ||
-          (kDashpots && (dashpot[k].normal != 0.0 || dashpot[k].tangential != 0.0));
+          (kDashpots && dashpot[k].any());
       if (was_touching) {
         const double len = std::sqrt(d2);
         const double nx = dx / len, ny = dy / len;

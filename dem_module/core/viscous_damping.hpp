@@ -48,6 +48,7 @@ inline double dashpot_scale(double zeta, double stiffness_pa) { return 2.0 * zet
 /// The normal and the tangential dashpot of one pair (bond, contact, disc and wall).
 struct PairDashpots {
   double normal = 0.0, tangential = 0.0;  ///< [N/m], compression positive and along t
+  bool any() const { return normal != 0.0 || tangential != 0.0; }
 };
 
 /// What a pair's dashpots dissipated over the drift into this evaluation [J/m]: velocity Verlet

@@ -65,8 +65,7 @@ void WallSet::rebuild(const Particles& p, double skin_m) {
   old_rolling_.clear();
   old_dashpot_.clear();
   for (std::size_t k = 0; k < particle_.size(); ++k) {
-    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0 || dashpot_[k].normal != 0.0 ||
-        dashpot_[k].tangential != 0.0) {
+    if (shear_force_[k] != 0.0 || rolling_moment_[k] != 0.0 || dashpot_[k].any()) {
       old_keys_.push_back((static_cast<std::uint64_t>(segment_[k]) << 32) | particle_[k]);
       old_shear_.push_back(shear_force_[k]);
       old_rolling_.push_back(rolling_moment_[k]);
@@ -126,7 +125,7 @@ void WallSet::compute_impl(const Particles& p, const ContactLaw& law, double dt,
       // Apart: springs and dashpots released as a contact's are (ContactList::compute_impl).
       const bool was_touching =
           shear_force_[k] != 0.0 || (kRolling && rolling_moment_[k] != 0.0) ||
-          (kDashpots && (dashpot_[k].normal != 0.0 || dashpot_[k].tangential != 0.0));
+          (kDashpots && dashpot_[k].any());
       if (was_touching) {
         const double dist = std::sqrt(d2);
         const double nx = d2 > 0.0 ? dx / dist : 0.0, ny = d2 > 0.0 ? dy / dist : 0.0;

@@ -20,6 +20,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "K_s: shear stiffness of the incremental tangential spring, N/m per metre of thickness (Pa)."},
     {"rockcut.BondParameters.shear_strength_n_per_m",
      "T_s: a bond breaks when its shear force exceeds this (N per metre of thickness)."},
+    {"rockcut.BondParameters.softening_ratio",
+     "lambda: past its strength a bond softens linearly instead of breaking at once (Hillerborg's fictitious crack; PFC's soft bond), over lambda times its elastic span, in tension and in shear with one damage D: tension T_n (1 - D), shear strength (T_s + tan(phi_b) F_n) (1 - D), unloading along the secant; it breaks at D = 1. The work to break a bond in tension is (1 + lambda) T_n^2 / (2 K_n), 1 + lambda times the brittle bond's (docs/model.md, \"Softening bonds\"). 0, the paper's bond: perfectly brittle."},
     {"rockcut.BondParameters.tensile_strength_n_per_m",
      "T_n: a bond breaks when its tensile force exceeds this (N per metre of thickness)."},
     {"rockcut.ContactParameters.friction",

@@ -24,6 +24,7 @@ std::vector<std::pair<const char*, double>> EnergyBudget::terms() const {
           {"viscous_damping_j", viscous_damping_j}, {"rolling_j", rolling_j},
           {"kinetic_energy_j", kinetic_energy_j}, {"strain_energy_j", strain_energy_j}};
   if (viscous_damping_j > 0) terms.push_back({"viscous_damping_bonds_j", viscous_damping_bonds_j});
+  if (bond_softening_j > 0) terms.push_back({"bond_softening_j", bond_softening_j});
   return terms;
 }
 
@@ -63,6 +64,7 @@ std::optional<EnergyBudget> energy_budget(
     b.viscous_damping_bonds_j = *v;
   }
   if (const double* v = find_value(scalars, "rolling_j")) b.rolling_j = *v;
+  if (const double* v = find_value(scalars, "bond_softening_j")) b.bond_softening_j = *v;
   return b;
 }
 
@@ -101,6 +103,10 @@ std::string describe(const EnergyBudget& b, const std::string& external) {
   if (b.boundary_work_j < 0) sink("walls and tool", -b.boundary_work_j);
   if (b.gravity_work_j < 0) sink("gravity", -b.gravity_work_j);
   sink("broken bonds", b.broken_bond_j);
+  if (b.bond_softening_j > 0) {  // the softening bonds' part, inside the broken bonds' share
+    std::snprintf(buf, sizeof buf, " (softening %.1f %%)", 100.0 * b.bond_softening_j / in);
+    text += buf;
+  }
   sink("kinetic + strain", b.kinetic_energy_j + b.strain_energy_j);
   return text;
 }

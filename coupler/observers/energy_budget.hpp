@@ -24,6 +24,7 @@ struct EnergyBudget {
   /// The bonds' part of viscous_damping_j (the intact rock's vibration); the rest is the
   /// contacts' and the walls' (collisions of loose discs and chips).
   double viscous_damping_bonds_j = 0.0;
+  double bond_softening_j = 0.0;  ///< the part of broken_bond_j softening bonds dissipated
   double rolling_j = 0.0;          ///< dissipated by rolling resistance (likewise)
   double kinetic_energy_j = 0.0;
   double strain_energy_j = 0.0;

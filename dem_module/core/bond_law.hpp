@@ -1,5 +1,5 @@
 // The bond law (paper section 3.1, eq. 9 and figure 4; DESIGN section 4), per metre of thickness:
-// linear elastic and perfectly brittle. Normal force k_n (L0 - L), compression positive, in
+// linear elastic and perfectly brittle (or softening past its strength, core/bond_softening.hpp). Normal force k_n (L0 - L), compression positive, in
 // tension and compression; tangential force from the incremental shear spring
 // (core/incremental_shear_spring.hpp). A bond breaks in tension when the tensile force exceeds
 // T_n, in shear when |F_t| > T_s, never in compression; after breaking the pair may collide.
@@ -18,6 +18,9 @@ struct BondLaw {
   double shear_strength_n_per_m = 0.0;    ///< T_s [N per metre of thickness]
   /// tan(phi_b): the shear strength's growth with the bond's compression (0: the paper's bond).
   double friction_coefficient = 0.0;
+  /// lambda: the softening span over the elastic span (core/bond_softening.hpp); 0: the paper's
+  /// perfectly brittle bond.
+  double softening_ratio = 0.0;
 };
 
 /// How a bond broke.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/bond_softening.hpp"
 #include "core/cell_grid.hpp"
 #include "core/viscous_damping.hpp"
 
@@ -42,14 +43,15 @@ BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tole
   b.released_at_break_.assign(b.i_.size(), 0.0);
   b.dashpot_.assign(b.i_.size(), PairDashpots{});
   b.broken_.assign(b.i_.size(), 0);
+  if (law.softening_ratio > 0.0) b.damage_.assign(b.i_.size(), 0.0);
   b.refresh_partners(p.size());
   return b;
 }
 
-template <bool kDashpots>
+template <bool kDashpots, bool kSoftening>
 void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,
                            ForceView out, bool& any_broken, double contact_normal_pa,
-                           double damping_ratio, double& viscous_j) {
+                           double damping_ratio, double& viscous_j, double& softening_j) {
   const double* x = p.position.data();
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
@@ -66,7 +68,8 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   const double tan_phi_b = law_.friction_coefficient;
   const double cn_scale = kDashpots ? dashpot_scale(damping_ratio, kn) : 0.0;
   const double ct_scale = kDashpots ? dashpot_scale(damping_ratio, law_.shear_stiffness_pa) : 0.0;
-  double dissipated = 0.0;
+  const double* damage = damage_.data();
+  double dissipated = 0.0, softened = 0.0;
   bool broke = false;
   for (std::size_t k = begin; k < end; ++k) {
     const std::uint32_t i = bi[k], j = bj[k];
@@ -86,7 +89,16 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
     // Perfectly brittle: exceeding a strength breaks the bond in this evaluation, with no force.
     // The strengths bound the springs' forces; the dashpots beside them do not break a bond.
     const double ts_fn = bond_shear_strength(ts, tan_phi_b, fn);
-    if (bond_breaks(fn, fs, tn, ts_fn)) [[unlikely]] {
+    if constexpr (kSoftening) {
+      // A damaged bond, or one past its strength, follows the softening law out of the loop.
+      if (damage[k] > 0.0 || bond_breaks(fn, fs, tn, ts_fn)) [[unlikely]] {
+        if (soften<kDashpots>(k, p, dt, fn, fs, out, contact_normal_pa, cn_scale, ct_scale,
+                              dissipated, softened)) {
+          broke = true;
+        }
+        continue;
+      }
+    } else if (bond_breaks(fn, fs, tn, ts_fn)) [[unlikely]] {
       break_now<kDashpots>(k, p, dt, fn, fs, ts_fn, out, contact_normal_pa, dissipated);
       broke = true;
       continue;
@@ -106,6 +118,7 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   }
   if (broke) any_broken = true;
   viscous_j += dissipated;
+  if constexpr (kSoftening) softening_j += softened;
 }
 
 template <bool kDashpots>
@@ -154,14 +167,106 @@ void BondSet::break_now(std::size_t k, const Particles& p, double dt, double fn,
                                                law_.shear_stiffness_pa, contact_normal_pa);
 }
 
+template <bool kDashpots>
+bool BondSet::soften(std::size_t k, const Particles& p, double dt, double fn, double fs,
+                     ForceView out, double contact_normal_pa, double cn_scale, double ct_scale,
+                     double& dissipated_j, double& softening_j) {
+  // The geometry again, as compute_impl formed it (the same expressions, the same bits).
+  const double* x = p.position.data();
+  const double* v = p.velocity.data();
+  const double* w = p.angular_velocity.data();
+  const double* r = p.radius.data();
+  const std::uint32_t i = i_[k], j = j_[k];
+  const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
+  const double len = std::sqrt(dx * dx + dy * dy);
+  const double inv_len = 1.0 / len;
+  const double nx = dx * inv_len, ny = dy * inv_len;
+  const double kn = law_.normal_stiffness_pa, ks = law_.shear_stiffness_pa;
+  const double lambda = law_.softening_ratio, ts = law_.shear_strength_n_per_m;
+  const double d_before = damage_[k];
+  // The last evaluation's opening, at x^n = x^{n+1} - v^{n+1/2} dt, and the force and energy the
+  // law gave it there (the damage has not changed since).
+  const double rel_vx = v[2 * j] - v[2 * i], rel_vy = v[2 * j + 1] - v[2 * i + 1];
+  const double dx_before = dx - rel_vx * dt, dy_before = dy - rel_vy * dt;
+  const double open_before =
+      std::sqrt(dx_before * dx_before + dy_before * dy_before) - rest_length_[k];
+  const double open = len - rest_length_[k];
+  const double t_before = softened_tension(kn, open_before, d_before, lambda);
+  const double e_before = 0.5 * t_before * open_before;
+  // Shear first: the slip past the softened limit damages the bond. The normal force below then
+  // uses the damage this evaluation leaves, so that the next one finds it again at x^n.
+  const double fs_before = shear_force_[k];
+  double damage = d_before, fs_after = fs, shear_loss = 0.0;
+  const double limit = bond_shear_strength(ts, law_.friction_coefficient, fn) * (1.0 - d_before);
+  if (std::abs(fs) > limit) {
+    fs_after = std::copysign(limit, fs);
+    // The plastic slip (|F_trial| - limit) / k_s over the plastic slip that takes the strength
+    // to zero, (1 + lambda) T_s / k_s: the force then falls to zero over lambda elastic slips of
+    // total slip, as the tensile envelope over lambda elastic openings.
+    damage += (std::abs(fs) - limit) / ((1.0 + lambda) * ts);
+    shear_loss = 0.5 * (fs_before + fs_after) * (fs - fs_after) / ks;
+  }
+  const bool broke_in_shear = damage >= 1.0;
+  if (open > 0.0) {
+    damage = std::max(damage, tensile_envelope_damage(open, law_.tensile_strength_n_per_m / kn, lambda));
+  }
+  const double vt = shear_spring_velocity(rel_vx, rel_vy, nx, ny, w[i] * r[i], w[j] * r[j]);
+  const double vn = rel_vx * nx + rel_vy * ny;
+  if (damage >= 1.0) {
+    broken_[k] = 1 + static_cast<std::uint8_t>(broke_in_shear ? BreakMode::shear : BreakMode::tensile);
+    shear_force_[k] = fs;
+    if constexpr (kDashpots) dashpots_released(dashpot_[k], vn, vt, dt, dissipated_j);
+    // A pair pressed together passes on to its contact, as break_now.
+    const double overlap = r[i] + r[j] - len;
+    double fc = 0.0;
+    if (contact_normal_pa > 0.0 && overlap > 0.0) {
+      fc = contact_normal_force(contact_normal_pa, overlap);
+      out.add_pair(i, j, fc * nx, fc * ny, 0.0, 0.0);
+    }
+    // What the kick's trapezoid did on the pair (tension positive: -fc after) and the springs'
+    // energy change leave, the contact's energy kept; the shear spring goes from F_b to nothing
+    // (bond_energy_released).
+    const double normal = 0.5 * (t_before - fc) * (open - open_before) + e_before -
+                          (fc > 0.0 ? 0.5 * fc * fc / contact_normal_pa : 0.0);
+    released_at_break_[k] = normal + 0.5 * fs_before * fs / ks;
+    return true;
+  }
+  damage_[k] = damage;
+  shear_force_[k] = fs_after;
+  const double t_after = softened_tension(kn, open, damage, lambda);
+  const double e_after = 0.5 * t_after * open;
+  softening_j += shear_loss + 0.5 * (t_before + t_after) * (open - open_before) - (e_after - e_before);
+  double fn_total = -t_after, fs_total = fs_after;
+  if constexpr (kDashpots) {
+    const PairDashpots d = pair_dashpots(cn_scale, ct_scale,
+                                         sqrt_effective_mass(p.inv_mass[i], p.inv_mass[j]), vn, vt,
+                                         dt, dashpot_[k], dissipated_j);
+    fn_total += d.normal;
+    fs_total += d.tangential;
+  }
+  const PairForce f = pair_force(fn_total, fs_total, nx, ny, -ny, nx);  // on j
+  out.add_pair(i, j, f.fx, f.fy, -fs_total * r[i], -fs_total * r[j]);
+  return false;
+}
+
 void BondSet::compute(const Particles& p, double dt, std::size_t begin, std::size_t end,
                       ForceView out, bool& any_broken, double contact_normal_pa,
-                      double damping_ratio, double& viscous_j) {
+                      double damping_ratio, double& viscous_j, double& softening_j) {
+  const bool softening = !damage_.empty();
   if (damping_ratio > 0.0) {
-    compute_impl<true>(p, dt, begin, end, out, any_broken, contact_normal_pa, damping_ratio,
-                       viscous_j);
+    if (softening) {
+      compute_impl<true, true>(p, dt, begin, end, out, any_broken, contact_normal_pa,
+                               damping_ratio, viscous_j, softening_j);
+    } else {
+      compute_impl<true, false>(p, dt, begin, end, out, any_broken, contact_normal_pa,
+                                damping_ratio, viscous_j, softening_j);
+    }
+  } else if (softening) {
+    compute_impl<false, true>(p, dt, begin, end, out, any_broken, contact_normal_pa, 0.0,
+                              viscous_j, softening_j);
   } else {
-    compute_impl<false>(p, dt, begin, end, out, any_broken, contact_normal_pa, 0.0, viscous_j);
+    compute_impl<false, false>(p, dt, begin, end, out, any_broken, contact_normal_pa, 0.0,
+                               viscous_j, softening_j);
   }
 }
 
@@ -185,6 +290,7 @@ void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondB
     rest_length_[keep] = rest_length_[k];
     shear_force_[keep] = shear_force_[k];
     dashpot_[keep] = dashpot_[k];
+    if (!damage_.empty()) damage_[keep] = damage_[k];
     broken_[keep] = 0;
     ++keep;
   }
@@ -195,19 +301,35 @@ void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondB
   released_at_break_.resize(keep);
   dashpot_.resize(keep);
   broken_.resize(keep);
+  if (!damage_.empty()) damage_.resize(keep);
 }
 
 double BondSet::normal_force(std::size_t k, const Particles& p) const {
   const std::uint32_t i = i_[k], j = j_[k];
   const double dx = p.position[2 * j] - p.position[2 * i];
   const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
-  return bond_normal_force(law_.normal_stiffness_pa, rest_length_[k], std::sqrt(dx * dx + dy * dy));
+  const double len = std::sqrt(dx * dx + dy * dy);
+  if (!damage_.empty()) {
+    return -softened_tension(law_.normal_stiffness_pa, len - rest_length_[k], damage_[k],
+                             law_.softening_ratio);
+  }
+  return bond_normal_force(law_.normal_stiffness_pa, rest_length_[k], len);
 }
 
 double BondSet::strain_energy(const Particles& p) const {
   double e = 0.0;
   for (std::size_t k = 0; k < i_.size(); ++k) {
     const double fn = normal_force(k, p);
+    if (!damage_.empty() && damage_[k] > 0.0) {  // on its secant in tension
+      const std::uint32_t i = i_[k], j = j_[k];
+      const double dx = p.position[2 * j] - p.position[2 * i];
+      const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
+      e += softened_normal_energy(law_.normal_stiffness_pa,
+                                  std::sqrt(dx * dx + dy * dy) - rest_length_[k], damage_[k],
+                                  law_.softening_ratio) +
+           0.5 * shear_force_[k] * shear_force_[k] / law_.shear_stiffness_pa;
+      continue;
+    }
     e += bond_energy(fn, shear_force_[k], law_.normal_stiffness_pa, law_.shear_stiffness_pa);
   }
   return e;

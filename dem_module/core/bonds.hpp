@@ -33,10 +33,12 @@ class BondSet {
   /// overlap gets, in this same evaluation, the normal force of the contact that replaces the bond,
   /// contact_normal_pa times the overlap (0 without contacts). With
   /// damping_ratio > 0 each bond has a normal and a tangential dashpot beside its springs
-  /// (core/viscous_damping.hpp), whose dissipation is added to `viscous_j`.
+  /// (core/viscous_damping.hpp), whose dissipation is added to `viscous_j`. With a softening law
+  /// (softening_ratio > 0) a bond past its strength softens (core/bond_softening.hpp) and breaks
+  /// when its damage reaches 1; what softening dissipates is added to `softening_j`.
   void compute(const Particles& p, double dt, std::size_t begin, std::size_t end, ForceView out,
                bool& any_broken, double contact_normal_pa, double damping_ratio,
-               double& viscous_j);
+               double& viscous_j, double& softening_j);
   /// Removes the flagged bonds, appending their breaks (and the pairs, which may now collide) to
   /// the given lists, and the elastic energy they released to the ledger (bond_energy_released,
   /// core/bond_law.hpp: less what the contact spring of a compressed pair keeps).
@@ -59,14 +61,16 @@ class BondSet {
   /// Normal force of bond k at the current positions (compression positive) [N/m].
   double normal_force(std::size_t k, const Particles& p) const;
   double shear_force(std::size_t k) const { return shear_force_[k]; }
+  /// D of bond k (0 under the brittle law).
+  double damage(std::size_t k) const { return damage_.empty() ? 0.0 : damage_[k]; }
   std::uint32_t first(std::size_t k) const { return i_[k]; }
   std::uint32_t second(std::size_t k) const { return j_[k]; }
 
  private:
-  template <bool kDashpots>
+  template <bool kDashpots, bool kSoftening>
   void compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,
                     ForceView out, bool& any_broken, double contact_normal_pa,
-                    double damping_ratio, double& viscous_j);
+                    double damping_ratio, double& viscous_j, double& softening_j);
 
   /// Bond k breaks in this evaluation (at F_n `fn`, trial shear `fs`, shear strength `ts_fn`):
   /// flagged, its release and its dashpots' last work booked, the contact's normal force of a
@@ -75,6 +79,14 @@ class BondSet {
   [[gnu::cold, gnu::noinline]] void break_now(std::size_t k, const Particles& p, double dt,
                                               double fn, double fs, double ts_fn, ForceView out,
                                               double contact_normal_pa, double& dissipated_j);
+  /// Bond k is damaged or past its strength under a softening law: its damage, forces and
+  /// dashpots for this evaluation (core/bond_softening.hpp), the softening's dissipation added to
+  /// `softening_j`. Returns true if it breaks (damage 1), booked as break_now books a break.
+  /// Out of the pair loop: only the bonds in a process zone come here.
+  template <bool kDashpots>
+  [[gnu::noinline]] bool soften(std::size_t k, const Particles& p, double dt, double fn, double fs,
+                                ForceView out, double contact_normal_pa, double cn_scale,
+                                double ct_scale, double& dissipated_j, double& softening_j);
 
   BondLaw law_;
   std::vector<std::uint32_t> i_, j_;
@@ -84,6 +96,8 @@ class BondSet {
   /// The dashpots' forces of the last evaluation (the F^n end of their trapezoid; 0 without).
   std::vector<PairDashpots> dashpot_;
   std::vector<std::uint8_t> broken_;  ///< 0, or 1 + BreakMode
+  /// D of a softening bond (core/bond_softening.hpp); empty under the brittle law.
+  std::vector<double> damage_;
   std::vector<std::uint32_t> partner_start_, partner_;
 };
 

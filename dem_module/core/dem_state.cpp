@@ -55,6 +55,7 @@ void BondSet::save_state(StateArchive& a) const {
   a.put("bond_released_at_break_j", released_at_break_);
   a.put_values("bond_broken", broken_);
   put_dashpots(a, "bond_dashpot_force_n_per_m", dashpot_);
+  if (!damage_.empty()) a.put("bond_damage", damage_);
 }
 
 void BondSet::load_state(const StateArchive& a, std::size_t particles) {
@@ -69,6 +70,13 @@ void BondSet::load_state(const StateArchive& a, std::size_t particles) {
   if (a.has("bond_released_at_break_j")) a.get("bond_released_at_break_j", released_at_break_, n);
   a.get_values("bond_broken", broken_, n);
   get_dashpots(a, "bond_dashpot_force_n_per_m", dashpot_, n);
+  // The damage of a softening law's bonds; the scene's law says whether there is one (a state
+  // written under the brittle law resumes with every bond intact).
+  damage_.clear();
+  if (law_.softening_ratio > 0.0) {
+    damage_.assign(n, 0.0);
+    if (a.has("bond_damage")) a.get("bond_damage", damage_, n);
+  }
   check_index("bond_i", i_, particles);
   check_index("bond_j", j_, particles);
   refresh_partners(particles);
@@ -167,6 +175,7 @@ void DemSystem::save_state(StateArchive& a) const {
                                         ledger_.friction_j, ledger_.broken_bond_j,
                                         ledger_.viscous_damping_j, ledger_.rolling_j});
   a.put_scalar("ledger_viscous_bonds_j", ledger_.viscous_damping_bonds_j);
+  a.put_scalar("ledger_bond_softening_j", ledger_.bond_softening_j);
   a.put_scalar("max_drift_m", max_drift_m_);
   a.put_scalar("dt_last_s", dt_last_);
   a.put_scalar("time_s", time_s_);
@@ -226,6 +235,8 @@ void DemSystem::assign_state(const StateArchive& a) {
   // member: its bonds' part then counts from the resume.
   ledger_.viscous_damping_bonds_j =
       a.has("ledger_viscous_bonds_j") ? a.scalar("ledger_viscous_bonds_j") : 0.0;
+  ledger_.bond_softening_j =
+      a.has("ledger_bond_softening_j") ? a.scalar("ledger_bond_softening_j") : 0.0;
   max_drift_m_ = a.scalar("max_drift_m");
   dt_last_ = a.scalar("dt_last_s");
   time_s_ = a.scalar("time_s");

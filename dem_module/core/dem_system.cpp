@@ -121,6 +121,7 @@ ThreadSums DemSystem::total_sums() const {
     total.pairs.friction_j += s.pairs.friction_j;
     total.pairs.viscous_j += s.pairs.viscous_j;
     total.bond_viscous_j += s.bond_viscous_j;
+    total.bond_softening_j += s.bond_softening_j;
     total.pairs.rolling_j += s.pairs.rolling_j;
     total.any_broken = total.any_broken || s.any_broken;
   }
@@ -134,6 +135,8 @@ void DemSystem::book(const ThreadSums& s) {
   ledger_.friction_j += s.pairs.friction_j;
   ledger_.viscous_damping_j += s.pairs.viscous_j;
   ledger_.viscous_damping_bonds_j += s.bond_viscous_j;
+  ledger_.broken_bond_j += s.bond_softening_j;
+  ledger_.bond_softening_j += s.bond_softening_j;
   ledger_.rolling_j += s.pairs.rolling_j;
 }
 
@@ -205,7 +208,7 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
   const auto [b0, b1] = share(bonds_.size(), t, threads);
   bonds_.compute(particles_, dt, b0, b1, out, sums.any_broken,
                  settings_.contact.normal_stiffness_pa, settings_.contact.damping_ratio,
-                 sums.pairs.viscous_j);
+                 sums.pairs.viscous_j, sums.bond_softening_j);
   // The bonds add first to a sum the step started at zero: what it holds now is theirs. The
   // contacts add to the same sum, so the total keeps its order of additions (and its bits).
   sums.bond_viscous_j = sums.pairs.viscous_j;

@@ -60,6 +60,7 @@ struct alignas(64) ThreadSums {
   double external_work_j = 0.0, gravity_work_j = 0.0, damping_j = 0.0;
   ContactDissipation pairs;  ///< friction, dashpots, rolling springs
   double bond_viscous_j = 0.0;  ///< the part of pairs.viscous_j taken by the bonds' dashpots
+  double bond_softening_j = 0.0;  ///< dissipated by softening bonds
   bool any_broken = false;
 };
 
@@ -95,6 +96,8 @@ class DemSystem {
   const MembraneLoad& membrane_load() const { return membrane_; }
 
   const Particles& particles() const { return particles_; }
+  /// For tests and drivers that set velocities between steps (a driven pair reversing).
+  Particles& particles_for_driving() { return particles_; }
   const BondSet& bonds() const { return bonds_; }
   const WallSet& walls() const { return walls_; }
   const ContactList& contacts() const { return contacts_; }

@@ -14,12 +14,16 @@ struct EnergyLedger {
   double gravity_work_j = 0.0;    ///< done by gravity
   double damping_j = 0.0;         ///< dissipated by local damping (>= 0)
   double friction_j = 0.0;        ///< dissipated by sliding contacts (>= 0)
-  double broken_bond_j = 0.0;     ///< released by bond breaks (less what a contact keeps)
+  double broken_bond_j = 0.0;     ///< taken by breaking bonds: released at the breaks (less what a
+                                  ///< contact keeps) and dissipated by softening
   double viscous_damping_j = 0.0; ///< dissipated by the dashpots (>= 0)
   double rolling_j = 0.0;         ///< dissipated by rolling springs cut to their limit (>= 0)
   /// The part of viscous_damping_j taken by the bonds' dashpots: the intact rock's vibration.
   /// The rest is the contacts' and the walls' (collisions of loose discs and chips).
   double viscous_damping_bonds_j = 0.0;
+  /// The part of broken_bond_j the softening bonds took on their way to breaking
+  /// (core/bond_softening.hpp); the rest was released at the breaks.
+  double bond_softening_j = 0.0;
 };
 
 /// What a pass over contacts dissipates [J/m], summed per thread.

@@ -284,6 +284,12 @@ void DemService::report(wire::Message& reply) {
   if (e.viscous_damping_j > 0) out["viscous_damping_bonds_j"] = e.viscous_damping_bonds_j;
   out["rolling_j"] = e.rolling_j;
   out["bonds"] = static_cast<double>(s.bonds().size());
+  if (s.bonds().law().softening_ratio > 0) {
+    out["bond_softening_j"] = e.bond_softening_j;
+    std::size_t damaged = 0;
+    for (std::size_t k = 0; k < s.bonds().size(); ++k) damaged += s.bonds().damage(k) > 0.0;
+    out["bonds_damaged"] = static_cast<double>(damaged);
+  }
   std::size_t tensile = 0;
   for (const BondBreak& b : s.breaks()) tensile += b.mode == BreakMode::tensile;
   out["breaks_tensile"] = static_cast<double>(tensile);

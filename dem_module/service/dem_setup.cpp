@@ -315,7 +315,8 @@ DemSetup build_dem(const rockcut::Dem& dem) {
     const rockcut::BondParameters& b = dem.bonds();
     const BondLaw law{b.normal_stiffness_pa(), b.shear_stiffness_pa(),
                       b.tensile_strength_n_per_m(), b.shear_strength_n_per_m(),
-                      std::tan(b.friction_angle_deg() * std::numbers::pi / 180.0)};
+                      std::tan(b.friction_angle_deg() * std::numbers::pi / 180.0),
+                      b.softening_ratio()};
     CellGrid grid;
     bonds = BondSet::install(particles, law, b.gap_tolerance_m(), grid);
     char line[160];

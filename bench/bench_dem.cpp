@@ -27,8 +27,10 @@ const rockcut::dem::Packing& packing() {
 }
 
 // The damping of the run: 0 the paper's local damping (alpha_d 0.7), 1 dashpots (zeta 0.1), 2
-// dashpots and rolling springs (mu_r 0.1): what each pair-loop variant costs.
-std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads, int damping = 0) {
+// dashpots and rolling springs (mu_r 0.1): what each pair-loop variant costs. softening_ratio:
+// the bonds' lambda (core/bond_softening.hpp), 0 the paper's brittle bond.
+std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads, int damping = 0,
+                                                                double softening_ratio = 0.0) {
   using namespace rockcut::dem;
   const Packing& pk = packing();
   Particles p;
@@ -40,7 +42,7 @@ std::unique_ptr<rockcut::dem::DemSystem> bonded_block_with_tool(int threads, int
   }
   CellGrid grid;
   // The README's bonding rule: every pair with a surface gap up to 10 um.
-  BondSet bonds = BondSet::install(p, {1e10, 2.5e10, 1e4, 2e4}, 10e-6, grid);
+  BondSet bonds = BondSet::install(p, {1e10, 2.5e10, 1e4, 2e4, 0.0, softening_ratio}, 10e-6, grid);
   DemSettings s;
   s.contact = {1e10, 2.5e10, 1.0, damping > 0 ? 0.1 : 0.0, damping > 1 ? 0.1 : 0.0};
   s.local_damping = damping == 0 ? 0.7 : 0.0;
@@ -70,6 +72,9 @@ void time_steps(benchmark::State& state, rockcut::dem::DemSystem& system) {
   state.counters["particles"] = static_cast<double>(n);
   state.counters["bonds"] = static_cast<double>(system.bonds().size());
   state.counters["breaks"] = static_cast<double>(system.breaks().size());
+  std::size_t damaged = 0;
+  for (std::size_t k = 0; k < system.bonds().size(); ++k) damaged += system.bonds().damage(k) > 0;
+  state.counters["damaged"] = static_cast<double>(damaged);
   state.counters["rebuilds"] = static_cast<double>(system.neighbour_rebuilds());
 }
 
@@ -84,6 +89,14 @@ void BM_BondedBlockCuttingDamping(benchmark::State& state) {
   time_steps(state, *bonded_block_with_tool(1, static_cast<int>(state.range(0))));
 }
 BENCHMARK(BM_BondedBlockCuttingDamping)->Arg(0)->Arg(1)->Arg(2)->UseRealTime()
+    ->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+// One thread under dashpots, brittle bonds (0) against softening ones (lambda 9): what the
+// damage check costs every bond, and the damaged bonds' own path once the tool has loaded some.
+void BM_BondedBlockCuttingSoftening(benchmark::State& state) {
+  time_steps(state, *bonded_block_with_tool(1, 1, static_cast<double>(state.range(0))));
+}
+BENCHMARK(BM_BondedBlockCuttingSoftening)->Arg(0)->Arg(9)->UseRealTime()
     ->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 }  // namespace

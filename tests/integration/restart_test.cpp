@@ -180,9 +180,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"dry_reduced", "1", "ipc"}, Case{"dry_reduced", "2", "inproc"},
                       Case{"saturated_reduced", "1", "ipc"}, Case{"saturated_reduced", "1", "inproc"},
                       Case{"saturated_reduced", "2", "ipc"}, Case{"saturated_reduced", "2", "inproc"},
-                      // Dashpots, a held base and rolling springs (whose moments are state).
+                      // Dashpots, a held base, rolling springs (whose moments are state) and
+                      // softening bonds (whose damage is).
                       Case{"dry_reduced_long", "2", "ipc",
-                           {"--set", "dem.contact.rolling_friction=0.1"}, "_rolling"},
+                           {"--set", "dem.contact.rolling_friction=0.1", "--set",
+                            "dem.bonds.softening_ratio=9"},
+                           "_rolling_softening"},
                       Case{"saturated_reduced_long_viscous", "1", "inproc",
                            {"--set", "dem.contact.rolling_friction=0.1"}, "_rolling"},
                       // Servo-steered side walls and the biaxial summary's samples, over the

@@ -241,13 +241,16 @@ TEST(SceneBase, TheRockOfTheCuttingAndCalibrationScenesIsWrittenOnce) {
   // calibration scene gets it from there, so that changing the rock edits one file (the coarse
   // discs' strengths, scaled with their size, in default_rock_coarse.pbtxt). A scene cut under
   // dashpots has the strengths calibrated under them (default_rock_viscous{,_coarse}.pbtxt): its
-  // one base is the local-damping cut it varies, so it writes them, and must write that file's.
+  // one base is the local-damping cut it varies, so it writes them, and must write that file's;
+  // a scene with softening bonds, default_rock_softening{,_coarse}.pbtxt's strengths and lambda.
   const fs::path cases = fs::path(ROCKCUT_SOURCE_DIR) / "cases";
-  rockcut::Scene rock, coarse, viscous, viscous_coarse;
+  rockcut::Scene rock, coarse, viscous, viscous_coarse, softening, softening_coarse;
   for (auto [file, scene] :
        {std::pair{"default_rock.pbtxt", &rock}, {"default_rock_coarse.pbtxt", &coarse},
         {"default_rock_viscous.pbtxt", &viscous},
-        {"default_rock_viscous_coarse.pbtxt", &viscous_coarse}}) {
+        {"default_rock_viscous_coarse.pbtxt", &viscous_coarse},
+        {"default_rock_softening.pbtxt", &softening},
+        {"default_rock_softening_coarse.pbtxt", &softening_coarse}}) {
     std::ifstream in(cases / "rock" / file);
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(text, scene)) << file;
@@ -267,9 +270,15 @@ TEST(SceneBase, TheRockOfTheCuttingAndCalibrationScenesIsWrittenOnce) {
             << entry.path() << " writes the rock's " << field << ": take it from cases/rock/";
       }
       const bool is_coarse = dem.specimen().radius_max_m() == coarse.dem().specimen().radius_max_m();
-      const rockcut::Dem& want = dashpots ? (is_coarse ? viscous_coarse.dem() : viscous.dem())
-                                 : is_coarse ? coarse.dem()
-                                             : rock.dem();
+      const bool softens = dem.bonds().softening_ratio() > 0;
+      // The files compose (base:): the softening rock's lambda is in the fine file only.
+      const rockcut::Dem& want =
+          softens    ? (is_coarse ? softening_coarse.dem() : softening.dem())
+          : dashpots ? (is_coarse ? viscous_coarse.dem() : viscous.dem())
+          : is_coarse ? coarse.dem()
+                      : rock.dem();
+      EXPECT_EQ(dem.bonds().softening_ratio(), softens ? softening.dem().bonds().softening_ratio() : 0.0)
+          << entry.path();
       EXPECT_EQ(dem.bonds().shear_strength_n_per_m(), want.bonds().shear_strength_n_per_m())
           << entry.path();
       EXPECT_EQ(dem.bonds().tensile_strength_n_per_m(), want.bonds().tensile_strength_n_per_m())

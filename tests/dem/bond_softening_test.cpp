@@ -149,7 +149,9 @@ TEST(SofteningBond, LambdaZeroIsThePapersBrittleBond) {
       brittle.step(1e-8);
       zero.step(1e-8);
       ASSERT_EQ(zero.bonds().size(), brittle.bonds().size());
-      if (zero.bonds().size() == 1) ASSERT_EQ(zero.bonds().damage(0), 0.0);
+      if (zero.bonds().size() == 1) {
+        ASSERT_EQ(zero.bonds().damage(0), 0.0);
+      }
     }
     EXPECT_EQ(zero.step_count(), brittle.step_count());
     EXPECT_EQ(zero.ledger().broken_bond_j, brittle.ledger().broken_bond_j);

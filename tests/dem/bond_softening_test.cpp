@@ -9,6 +9,7 @@
 #include "core/bond_softening.hpp"
 #include "core/dem_system.hpp"
 #include "dem/dem_test_support.hpp"
+#include "wire/state_archive.hpp"
 
 namespace rockcut::dem {
 namespace {
@@ -137,6 +138,30 @@ TEST(SofteningBond, SoftensInShearOverLambdaTimesItsElasticSlip) {
   EXPECT_NEAR(slip_softening, kLambda * slip_p, 1e-2 * slip_p);
   const double g_s = 0.5 * (1 + kLambda) * ts * ts / ks;
   EXPECT_NEAR(s.ledger().broken_bond_j, g_s, 1e-2 * g_s);
+}
+
+// The damage is state: a pair saved halfway down its envelope and loaded into a fresh system goes
+// on to the same break at the same step with the same ledger, bit for bit.
+TEST(SofteningBond, ItsDamageIsSavedAndLoadedWithTheState) {
+  const BondLaw law = softening_law();
+  const double v = 1e-2, dt = 1e-8, delta_p = law.tensile_strength_n_per_m / law.normal_stiffness_pa;
+  DemSystem reference = driven_pair(v, 0.0, law);
+  while (opening(reference) < 2.5 * delta_p) reference.step(dt);
+  ASSERT_GT(reference.bonds().damage(0), 0.4);
+  state::StateArchive archive;
+  reference.save_state(archive);
+  DemSystem resumed = driven_pair(v, 0.0, law);
+  resumed.load_state(archive);
+  EXPECT_EQ(resumed.bonds().damage(0), reference.bonds().damage(0));
+  EXPECT_EQ(resumed.ledger().bond_softening_j, reference.ledger().bond_softening_j);
+  while (reference.bonds().size() == 1 && reference.step_count() < 10'000'000) {
+    reference.step(dt);
+    resumed.step(dt);
+    ASSERT_EQ(resumed.bonds().size(), reference.bonds().size());
+  }
+  EXPECT_EQ(resumed.step_count(), reference.step_count());
+  EXPECT_EQ(resumed.ledger().broken_bond_j, reference.ledger().broken_bond_j);
+  EXPECT_EQ(resumed.ledger().bond_softening_j, reference.ledger().bond_softening_j);
 }
 
 // lambda = 0 is the paper's bond: the same breaks at the same steps, bit for bit, as a bond law

@@ -181,7 +181,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"saturated_reduced", "1", "ipc"}, Case{"saturated_reduced", "1", "inproc"},
                       Case{"saturated_reduced", "2", "ipc"}, Case{"saturated_reduced", "2", "inproc"},
                       // Dashpots, a held base, rolling springs (whose moments are state) and
-                      // softening bonds (whose damage is).
+                      // softening bonds (damaged from 2.7 ms, after the resumes: the damage's
+                      // own save and load is tests/dem/bond_softening_test.cpp's).
                       Case{"dry_reduced_long", "2", "ipc",
                            {"--set", "dem.contact.rolling_friction=0.1", "--set",
                             "dem.bonds.softening_ratio=9"},

@@ -121,29 +121,42 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   if constexpr (kSoftening) softening_j += softened;
 }
 
+BondSet::PairGeometry BondSet::geometry_again(std::size_t k, const Particles& p, double dt) const {
+  // As compute_impl formed it (the same expressions, the same bits).
+  const double* x = p.position.data();
+  const double* v = p.velocity.data();
+  PairGeometry g;
+  g.i = i_[k];
+  g.j = j_[k];
+  const double dx = x[2 * g.j] - x[2 * g.i], dy = x[2 * g.j + 1] - x[2 * g.i + 1];
+  g.length_m = std::sqrt(dx * dx + dy * dy);
+  const double inv_len = 1.0 / g.length_m;
+  g.nx = dx * inv_len;
+  g.ny = dy * inv_len;
+  g.rel_vx = v[2 * g.j] - v[2 * g.i];
+  g.rel_vy = v[2 * g.j + 1] - v[2 * g.i + 1];
+  // The length before the drift: x^n = x^{n+1} - v^{n+1/2} dt.
+  const double dx_before = dx - g.rel_vx * dt, dy_before = dy - g.rel_vy * dt;
+  g.length_before_m = std::sqrt(dx_before * dx_before + dy_before * dy_before);
+  return g;
+}
+
 template <bool kDashpots>
 void BondSet::break_now(std::size_t k, const Particles& p, double dt, double fn, double fs,
                         double ts_fn, ForceView out, double contact_normal_pa,
                         double& dissipated_j) {
-  // The geometry again, as compute_impl formed it (the same expressions, the same bits).
-  const double* x = p.position.data();
-  const double* v = p.velocity.data();
+  const PairGeometry g = geometry_again(k, p, dt);
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
-  const std::uint32_t i = i_[k], j = j_[k];
-  const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
-  const double len = std::sqrt(dx * dx + dy * dy);
-  const double inv_len = 1.0 / len;
-  const double nx = dx * inv_len, ny = dy * inv_len;
+  const std::uint32_t i = g.i, j = g.j;
+  const double len = g.length_m, nx = g.nx, ny = g.ny;
   const double kn = law_.normal_stiffness_pa;
   broken_[k] = 1 + static_cast<std::uint8_t>(
                        bond_break_mode(fn, fs, law_.tensile_strength_n_per_m, ts_fn));
   // The springs' forces of the last evaluation: the shear spring's as stored, the normal one's at
-  // the length before the drift (x^n = x^{n+1} - v^{n+1/2} dt).
-  const double rel_vx = v[2 * j] - v[2 * i], rel_vy = v[2 * j + 1] - v[2 * i + 1];
-  const double dx_before = dx - rel_vx * dt, dy_before = dy - rel_vy * dt;
-  const double fn_before =
-      bond_normal_force(kn, rest_length_[k], std::sqrt(dx_before * dx_before + dy_before * dy_before));
+  // the length before the drift.
+  const double rel_vx = g.rel_vx, rel_vy = g.rel_vy;
+  const double fn_before = bond_normal_force(kn, rest_length_[k], g.length_before_m);
   const double fs_before = shear_force_[k];
   shear_force_[k] = fs;
   if constexpr (kDashpots) {  // they acted over the drift into this evaluation
@@ -171,25 +184,18 @@ template <bool kDashpots>
 bool BondSet::soften(std::size_t k, const Particles& p, double dt, double fn, double fs,
                      ForceView out, double contact_normal_pa, double cn_scale, double ct_scale,
                      double& dissipated_j, double& softening_j) {
-  // The geometry again, as compute_impl formed it (the same expressions, the same bits).
-  const double* x = p.position.data();
-  const double* v = p.velocity.data();
+  const PairGeometry g = geometry_again(k, p, dt);
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
-  const std::uint32_t i = i_[k], j = j_[k];
-  const double dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
-  const double len = std::sqrt(dx * dx + dy * dy);
-  const double inv_len = 1.0 / len;
-  const double nx = dx * inv_len, ny = dy * inv_len;
+  const std::uint32_t i = g.i, j = g.j;
+  const double len = g.length_m, nx = g.nx, ny = g.ny;
   const double kn = law_.normal_stiffness_pa, ks = law_.shear_stiffness_pa;
   const double lambda = law_.softening_ratio, ts = law_.shear_strength_n_per_m;
   const double d_before = damage_[k];
-  // The last evaluation's opening, at x^n = x^{n+1} - v^{n+1/2} dt, and the force and energy the
-  // law gave it there (the damage has not changed since).
-  const double rel_vx = v[2 * j] - v[2 * i], rel_vy = v[2 * j + 1] - v[2 * i + 1];
-  const double dx_before = dx - rel_vx * dt, dy_before = dy - rel_vy * dt;
-  const double open_before =
-      std::sqrt(dx_before * dx_before + dy_before * dy_before) - rest_length_[k];
+  // The last evaluation's opening and the force and energy the law gave it there (the damage has
+  // not changed since).
+  const double rel_vx = g.rel_vx, rel_vy = g.rel_vy;
+  const double open_before = g.length_before_m - rest_length_[k];
   const double open = len - rest_length_[k];
   const double t_before = softened_tension(kn, open_before, d_before, lambda);
   const double e_before = 0.5 * t_before * open_before;

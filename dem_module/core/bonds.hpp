@@ -67,6 +67,16 @@ class BondSet {
   std::uint32_t second(std::size_t k) const { return j_[k]; }
 
  private:
+  /// A pair's geometry as compute_impl formed it, for the cold paths, with its length before the
+  /// drift into this evaluation.
+  struct PairGeometry {
+    std::uint32_t i, j;
+    double length_m, nx, ny;      ///< now, and the unit normal from i to j
+    double rel_vx, rel_vy;        ///< v_j - v_i at the half step
+    double length_before_m;       ///< at x^n = x^{n+1} - v^{n+1/2} dt
+  };
+  PairGeometry geometry_again(std::size_t k, const Particles& p, double dt) const;
+
   template <bool kDashpots, bool kSoftening>
   void compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,
                     ForceView out, bool& any_broken, double contact_normal_pa,

@@ -22,21 +22,6 @@ BondLaw softening_law(double lambda = kLambda) {
   return law;
 }
 
-// Two bonded discs; disc 1 is driven at constant velocity. Both get a mass of 1e30 kg/m, so the
-// bond force (<= 1e5 N/m) changes their velocities by less than 1e-35 m/s per step.
-DemSystem driven_pair(double vx, double vy, const BondLaw& law) {
-  Particles p;
-  const double r = 3e-4;
-  p.add(0.0, 0.0, r, 2800);
-  p.add(2 * r, 0.0, r, 2800);
-  for (auto* inv : {&p.inv_mass, &p.inv_inertia}) (*inv)[0] = (*inv)[1] = 1e-30;
-  p.velocity = {0.0, 0.0, vx, vy};
-  BondSet bonds = test::bond_all_touching(p, law);
-  DemSettings s;
-  s.contact = {law.normal_stiffness_pa, law.shear_stiffness_pa, 1.0};
-  return DemSystem(std::move(p), s, std::move(bonds));
-}
-
 double opening(const DemSystem& s) {
   const auto& x = s.particles().position;
   return std::hypot(x[2] - x[0], x[3] - x[1]) - 6e-4;
@@ -52,7 +37,7 @@ TEST(SofteningBond, FollowsTheTensileEnvelopeAndTakesItsAreaToBreak) {
   const double v = 1e-2, dt = 1e-8;
   const double increment = law.normal_stiffness_pa * v * dt;
   const double tn = law.tensile_strength_n_per_m, delta_p = tn / law.normal_stiffness_pa;
-  DemSystem s = driven_pair(v, 0.0, law);
+  DemSystem s = test::driven_pair(v, 0.0, law);
   double peak = 0.0, at_half_span = -1.0, last_opening = 0.0;
   while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
     const double t = -s.bonds().normal_force(0, s.particles());
@@ -83,7 +68,7 @@ TEST(SofteningBond, UnloadsAlongItsSecantAndClosesUnderCompression) {
   const double v = 1e-2, dt = 1e-8;
   const double increment = law.normal_stiffness_pa * v * dt;
   const double tn = law.tensile_strength_n_per_m, delta_p = tn / law.normal_stiffness_pa;
-  DemSystem s = driven_pair(v, 0.0, law);
+  DemSystem s = test::driven_pair(v, 0.0, law);
   while (opening(s) < 2.5 * delta_p) s.step(dt);
   const double damage = s.bonds().damage(0);
   EXPECT_NEAR(damage, 0.5, 2 * v * dt / (kLambda * delta_p));
@@ -119,7 +104,7 @@ TEST(SofteningBond, SoftensInShearOverLambdaTimesItsElasticSlip) {
   const BondLaw law = softening_law();
   const double v = 1e-2, dt = 1e-8;
   const double ts = law.shear_strength_n_per_m, ks = law.shear_stiffness_pa;
-  DemSystem s = driven_pair(0.0, v, law);
+  DemSystem s = test::driven_pair(0.0, v, law);
   double peak = 0.0;
   std::uint64_t steps_at_peak = 0;
   while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
@@ -145,12 +130,12 @@ TEST(SofteningBond, SoftensInShearOverLambdaTimesItsElasticSlip) {
 TEST(SofteningBond, ItsDamageIsSavedAndLoadedWithTheState) {
   const BondLaw law = softening_law();
   const double v = 1e-2, dt = 1e-8, delta_p = law.tensile_strength_n_per_m / law.normal_stiffness_pa;
-  DemSystem reference = driven_pair(v, 0.0, law);
+  DemSystem reference = test::driven_pair(v, 0.0, law);
   while (opening(reference) < 2.5 * delta_p) reference.step(dt);
   ASSERT_GT(reference.bonds().damage(0), 0.4);
   state::StateArchive archive;
   reference.save_state(archive);
-  DemSystem resumed = driven_pair(v, 0.0, law);
+  DemSystem resumed = test::driven_pair(v, 0.0, law);
   resumed.load_state(archive);
   EXPECT_EQ(resumed.bonds().damage(0), reference.bonds().damage(0));
   EXPECT_EQ(resumed.ledger().bond_softening_j, reference.ledger().bond_softening_j);
@@ -168,8 +153,8 @@ TEST(SofteningBond, ItsDamageIsSavedAndLoadedWithTheState) {
 // without the field.
 TEST(SofteningBond, LambdaZeroIsThePapersBrittleBond) {
   for (const auto& [vx, vy] : {std::pair{1e-2, 0.0}, {0.0, 1e-2}}) {
-    DemSystem brittle = driven_pair(vx, vy, test::table1_bond());
-    DemSystem zero = driven_pair(vx, vy, softening_law(0.0));
+    DemSystem brittle = test::driven_pair(vx, vy, test::table1_bond());
+    DemSystem zero = test::driven_pair(vx, vy, softening_law(0.0));
     while (brittle.bonds().size() == 1 && brittle.step_count() < 10'000'000) {
       brittle.step(1e-8);
       zero.step(1e-8);

@@ -11,26 +11,11 @@
 namespace rockcut::dem {
 namespace {
 
-// Two bonded discs; disc 1 is driven at constant velocity. Both get a mass of 1e30 kg/m, so the
-// bond force (<= 1e5 N/m) changes their velocities by less than 1e-35 m/s per step.
-DemSystem driven_pair(double vx, double vy, const BondLaw& law) {
-  Particles p;
-  const double r = 3e-4;
-  p.add(0.0, 0.0, r, 2800);
-  p.add(2 * r, 0.0, r, 2800);
-  for (auto* inv : {&p.inv_mass, &p.inv_inertia}) (*inv)[0] = (*inv)[1] = 1e-30;
-  p.velocity = {0.0, 0.0, vx, vy};
-  BondSet bonds = test::bond_all_touching(p, law);
-  DemSettings s;
-  s.contact = {law.normal_stiffness_pa, law.shear_stiffness_pa, 1.0};
-  return DemSystem(std::move(p), s, std::move(bonds));
-}
-
 TEST(Bond, BreaksInTensionAtTn) {
   const BondLaw law = test::table1_bond();
   const double v = 1e-3, dt = 1e-8;
   const double increment = law.normal_stiffness_pa * v * dt;  // load added per step [N/m]
-  DemSystem s = driven_pair(v, 0.0, law);
+  DemSystem s = test::driven_pair(v, 0.0, law);
   ASSERT_EQ(s.bonds().size(), 1u);
   double last_force = 0.0;
   while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
@@ -48,7 +33,7 @@ TEST(Bond, BreaksInShearAtTs) {
   const BondLaw law = test::table1_bond();
   const double v = 1e-3, dt = 1e-8;
   const double increment = law.shear_stiffness_pa * v * dt;
-  DemSystem s = driven_pair(0.0, v, law);
+  DemSystem s = test::driven_pair(0.0, v, law);
   double last_shear = 0.0;
   while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
     last_shear = std::abs(s.bonds().shear_force(0));
@@ -69,7 +54,7 @@ TEST(Bond, FrictionAngleRaisesTheShearStrengthByTanPhiTimesTheCompression) {
     BondLaw law = test::table1_bond();
     law.friction_coefficient = std::tan(phi_deg * std::acos(-1.0) / 180.0);
     const double v = 1e-3, dt = 1e-8;
-    DemSystem s = driven_pair(-v, v, law);  // closing and sliding at once
+    DemSystem s = test::driven_pair(-v, v, law);  // closing and sliding at once
     double last_shear = 0.0, last_normal = 0.0;
     while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
       last_shear = std::abs(s.bonds().shear_force(0));
@@ -93,7 +78,7 @@ TEST(Bond, FrictionAngleRaisesTheShearStrengthByTanPhiTimesTheCompression) {
 
 TEST(Bond, NeverBreaksInCompressionAndCarriesIt) {
   const BondLaw law = test::table1_bond();
-  DemSystem s = driven_pair(-0.1, 0.0, law);
+  DemSystem s = test::driven_pair(-0.1, 0.0, law);
   for (int k = 0; k < 20000; ++k) s.step(1e-8);  // 20 um closer: 20 times T_n / k_n
   EXPECT_EQ(s.bonds().size(), 1u);
   EXPECT_GT(s.bonds().normal_force(0, s.particles()), 5 * law.tensile_strength_n_per_m);
@@ -101,7 +86,7 @@ TEST(Bond, NeverBreaksInCompressionAndCarriesIt) {
 
 TEST(Bond, BrokenPairStillCollides) {
   const BondLaw law = test::table1_bond();
-  DemSystem s = driven_pair(1e-3, 0.0, law);
+  DemSystem s = test::driven_pair(1e-3, 0.0, law);
   while (s.bonds().size() == 1) s.step(1e-8);
   EXPECT_EQ(s.contacts().size(), 1u) << "the freed pair joins the contact list";
 }
@@ -114,7 +99,7 @@ TEST(Bond, BrokenPairStillCollides) {
 TEST(Bond, ShearBreakUnderCompressionBooksOnlyTheReleasedEnergy) {
   const BondLaw law = test::table1_bond();
   const double dt = 1e-8;
-  DemSystem s = driven_pair(-1e-3, 1e-3, law);
+  DemSystem s = test::driven_pair(-1e-3, 1e-3, law);
   double before = 0.0, normal_force = 0.0;
   while (s.bonds().size() == 1 && s.step_count() < 10'000'000) {
     before = s.strain_energy() + s.ledger().broken_bond_j;

@@ -5,6 +5,7 @@
 
 #include "core/bonds.hpp"
 #include "core/cell_grid.hpp"
+#include "core/dem_system.hpp"
 #include "core/particles.hpp"
 
 namespace rockcut::dem::test {
@@ -26,6 +27,22 @@ inline BondLaw table1_bond() { return {1e10, 2.5e10, 1e4, 2e4}; }
 inline BondSet bond_all_touching(const Particles& p, const BondLaw& law) {
   CellGrid grid;
   return BondSet::install(p, law, 1e-9, grid);
+}
+
+/// Two bonded discs of radius 0.3 mm touching along x; disc 1 is driven at (vx, vy). Both get a
+/// mass of 1e30 kg/m, so the bond force (<= 1e5 N/m) changes their velocities by less than
+/// 1e-35 m/s per step.
+inline DemSystem driven_pair(double vx, double vy, const BondLaw& law) {
+  Particles p;
+  const double r = 3e-4;
+  p.add(0.0, 0.0, r, 2800);
+  p.add(2 * r, 0.0, r, 2800);
+  for (auto* inv : {&p.inv_mass, &p.inv_inertia}) (*inv)[0] = (*inv)[1] = 1e-30;
+  p.velocity = {0.0, 0.0, vx, vy};
+  BondSet bonds = bond_all_touching(p, law);
+  DemSettings s;
+  s.contact = {law.normal_stiffness_pa, law.shear_stiffness_pa, 1.0};
+  return DemSystem(std::move(p), s, std::move(bonds));
 }
 
 }  // namespace rockcut::dem::test

@@ -108,6 +108,7 @@ class BondSet {
   std::vector<std::uint8_t> broken_;  ///< 0, or 1 + BreakMode
   /// D of a softening bond (core/bond_softening.hpp); empty under the brittle law.
   std::vector<double> damage_;
+  std::vector<std::uint8_t> damaged_;  ///< damage_[k] > 0, for the hot loop's check
   std::vector<std::uint32_t> partner_start_, partner_;
 };
 

@@ -77,6 +77,8 @@ void BondSet::load_state(const StateArchive& a, std::size_t particles) {
     damage_.assign(n, 0.0);
     if (a.has("bond_damage")) a.get("bond_damage", damage_, n);
   }
+  damaged_.assign(damage_.size(), 0);
+  for (std::size_t k = 0; k < damage_.size(); ++k) damaged_[k] = damage_[k] > 0.0;
   check_index("bond_i", i_, particles);
   check_index("bond_j", j_, particles);
   refresh_partners(particles);

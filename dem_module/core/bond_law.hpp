@@ -1,8 +1,9 @@
 // The bond law (paper section 3.1, eq. 9 and figure 4; DESIGN section 4), per metre of thickness:
-// linear elastic and perfectly brittle (or softening past its strength, core/bond_softening.hpp). Normal force k_n (L0 - L), compression positive, in
-// tension and compression; tangential force from the incremental shear spring
-// (core/incremental_shear_spring.hpp). A bond breaks in tension when the tensile force exceeds
-// T_n, in shear when |F_t| > T_s, never in compression; after breaking the pair may collide.
+// linear elastic and perfectly brittle (or softening past its strength, core/bond_softening.hpp).
+// Normal force k_n (L0 - L), compression positive, in tension and compression; tangential force
+// from the incremental shear spring (core/incremental_shear_spring.hpp). A bond breaks in tension
+// when the tensile force exceeds T_n, in shear when |F_t| > T_s, never in compression; after
+// breaking the pair may collide.
 // always_inline: with plain inline GCC 12 compiled the step loops differently (less vectorised).
 #pragma once
 

@@ -207,16 +207,14 @@ bool BondSet::soften(std::size_t k, const Particles& p, double dt, double fn, do
   // Shear first: the slip past the softened limit damages the bond. The normal force below then
   // uses the damage this evaluation leaves, so that the next one finds it again at x^n.
   const double fs_before = shear_force_[k];
-  double damage = d_before, fs_after = fs, shear_loss = 0.0;
+  // The spring is cut to its softened limit and booked as friction's is (coulomb_limited).
+  double shear_loss = 0.0;
   const double limit = bond_shear_strength(ts, law_.friction_coefficient, fn) * (1.0 - d_before);
-  if (std::abs(fs) > limit) {
-    fs_after = std::copysign(limit, fs);
-    // The plastic slip (|F_trial| - limit) / k_s over the plastic slip that takes the strength
-    // to zero, (1 + lambda) T_s / k_s: the force then falls to zero over lambda elastic slips of
-    // total slip, as the tensile envelope over lambda elastic openings.
-    damage += (std::abs(fs) - limit) / ((1.0 + lambda) * ts);
-    shear_loss = 0.5 * (fs_before + fs_after) * (fs - fs_after) / ks;
-  }
+  const double fs_after = coulomb_limited(fs_before, fs, limit, ks, shear_loss);
+  // The plastic slip (|F_trial| - limit) / k_s over the plastic slip that takes the strength to
+  // zero, (1 + lambda) T_s / k_s: the force then falls to zero over lambda elastic slips of total
+  // slip, as the tensile envelope over lambda elastic openings.
+  double damage = d_before + (std::abs(fs) - std::abs(fs_after)) / ((1.0 + lambda) * ts);
   const bool broke_in_shear = damage >= 1.0;
   if (open > 0.0) {
     damage = std::max(damage, tensile_envelope_damage(open, law_.tensile_strength_n_per_m / kn, lambda));
@@ -322,11 +320,15 @@ void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondB
   }
 }
 
-double BondSet::normal_force(std::size_t k, const Particles& p) const {
+double BondSet::length_m(std::size_t k, const Particles& p) const {
   const std::uint32_t i = i_[k], j = j_[k];
   const double dx = p.position[2 * j] - p.position[2 * i];
   const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
-  const double len = std::sqrt(dx * dx + dy * dy);
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+double BondSet::normal_force(std::size_t k, const Particles& p) const {
+  const double len = length_m(k, p);
   if (!damage_.empty()) {
     return -softened_tension(law_.normal_stiffness_pa, len - rest_length_[k], damage_[k],
                              law_.softening_ratio);
@@ -335,20 +337,16 @@ double BondSet::normal_force(std::size_t k, const Particles& p) const {
 }
 
 double BondSet::strain_energy(const Particles& p) const {
+  const double kn = law_.normal_stiffness_pa, ks = law_.shear_stiffness_pa;
   double e = 0.0;
   for (std::size_t k = 0; k < i_.size(); ++k) {
-    const double fn = normal_force(k, p);
     if (!damage_.empty() && damage_[k] > 0.0) {  // on its secant in tension
-      const std::uint32_t i = i_[k], j = j_[k];
-      const double dx = p.position[2 * j] - p.position[2 * i];
-      const double dy = p.position[2 * j + 1] - p.position[2 * i + 1];
-      e += softened_normal_energy(law_.normal_stiffness_pa,
-                                  std::sqrt(dx * dx + dy * dy) - rest_length_[k], damage_[k],
+      e += softened_normal_energy(kn, length_m(k, p) - rest_length_[k], damage_[k],
                                   law_.softening_ratio) +
-           0.5 * shear_force_[k] * shear_force_[k] / law_.shear_stiffness_pa;
+           bond_energy(0.0, shear_force_[k], kn, ks);
       continue;
     }
-    e += bond_energy(fn, shear_force_[k], law_.normal_stiffness_pa, law_.shear_stiffness_pa);
+    e += bond_energy(normal_force(k, p), shear_force_[k], kn, ks);
   }
   return e;
 }

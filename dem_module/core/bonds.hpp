@@ -76,6 +76,8 @@ class BondSet {
     double length_before_m;       ///< at x^n = x^{n+1} - v^{n+1/2} dt
   };
   PairGeometry geometry_again(std::size_t k, const Particles& p, double dt) const;
+  /// The length of bond k's pair at the current positions [m].
+  double length_m(std::size_t k, const Particles& p) const;
 
   template <bool kDashpots, bool kSoftening>
   void compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,

@@ -5,6 +5,7 @@
 #include "observers/cutting_summary.hpp"
 #include "observers/energy_budget.hpp"
 #include "observers/expected_error.hpp"
+#include "observers/fracture_summary.hpp"
 #include "observers/peclet.hpp"
 #include "observers/pressure_nodes.hpp"
 
@@ -26,7 +27,13 @@ void register_observers(const rockcut::Scene& scene, const TimePlan& plan,
   if (!nodes.empty()) {
     observers.add(std::make_unique<PressureNodeProbes>(std::move(nodes), inputs.dem_label));
   }
-  if (scene.dem().has_loading_test()) observers.add(std::make_unique<CalibrationSummary>(scene));
+  if (scene.dem().has_loading_test()) {
+    if (scene.dem().loading_test().kind() == "fracture") {
+      observers.add(std::make_unique<FractureSummary>(scene));
+    } else {
+      observers.add(std::make_unique<CalibrationSummary>(scene));
+    }
+  }
   if (const auto pe = peclet_number(scene)) observers.add(std::make_unique<PecletReport>(*pe));
   const double dem_limit_s = smallest_limit_s(inputs.dem_limits);
   const double stiffness_limit_s = pore_fluid_stiffness_limit_s(inputs.fluid_limits);

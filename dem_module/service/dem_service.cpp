@@ -349,6 +349,12 @@ void DemService::report_rig(google::protobuf::Map<std::string, double>& out) {
   }
   out["platen_force_n_per_m"] = force;
   out["axial_strain"] = (bottom.offset_y - top.offset_y) / rig.height0_m;
+  if (rig.fracture) {
+    // The pull (tension positive) and how far the pulling ends have moved apart.
+    out["pulling_force_n_per_m"] = -force;
+    out["elongation_m"] = top.offset_y - bottom.offset_y;
+    out["ligament_m"] = rig.ligament_m;
+  }
   if (rig.ucs) out["axial_stress_pa"] = force / rig.width0_m;  // per unit thickness: N/m / m = Pa
   if (rig.biaxial) {
     // sigma_3 over the loaded length: the mean of the walls' pressing forces, or the membrane's

@@ -165,14 +165,81 @@ void select_loading_arcs(double arc_deg, double r_max, const Particles& p,
   }
 }
 
+// The particles whose `keep` is set, in their order, with all their state.
+Particles kept_particles(const Particles& p, const std::vector<char>& keep) {
+  Particles out;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!keep[i]) continue;
+    for (int a = 0; a < 2; ++a) {
+      out.position.push_back(p.position[2 * i + a]);
+      out.velocity.push_back(p.velocity[2 * i + a]);
+      out.force.push_back(p.force[2 * i + a]);
+      out.external_force.push_back(p.external_force[2 * i + a]);
+    }
+    out.angular_velocity.push_back(p.angular_velocity[i]);
+    out.torque.push_back(p.torque[i]);
+    out.radius.push_back(p.radius[i]);
+    out.inv_mass.push_back(p.inv_mass[i]);
+    out.inv_inertia.push_back(p.inv_inertia[i]);
+  }
+  return out;
+}
+
+// The fracture test's two edge notches (loading_test.notch_depth_ratio), cut before the bonds are
+// installed: the discs whose centres lie within one largest radius of mid-height and within the
+// notch depth of the left or right side. Returns the ligament left between them [m].
+double cut_edge_notches(double depth_ratio, Particles& p, std::string& report) {
+  double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    left = std::min(left, p.position[2 * i] - p.radius[i]);
+    right = std::max(right, p.position[2 * i] + p.radius[i]);
+    top = std::max(top, p.position[2 * i + 1] + p.radius[i]);
+    bottom = std::min(bottom, p.position[2 * i + 1] - p.radius[i]);
+    r_max = std::max(r_max, p.radius[i]);
+  }
+  const double depth_m = depth_ratio * (right - left), mid_m = 0.5 * (top + bottom);
+  std::vector<char> keep(p.size(), 1);
+  std::size_t taken = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double x = p.position[2 * i];
+    const bool in_notch = (x < left + depth_m || x > right - depth_m) &&
+                          std::abs(p.position[2 * i + 1] - mid_m) < r_max;
+    if (in_notch) keep[i] = 0, ++taken;
+  }
+  if (depth_m > 0 && taken == 0) {
+    throw std::invalid_argument("dem.loading_test.notch_depth_ratio: notches " +
+                                std::to_string(depth_m) + " m deep hold no disc; deepen them");
+  }
+  p = kept_particles(p, keep);
+  char line[160];
+  std::snprintf(line, sizeof line, "; two edge notches %.4g m deep (%zu discs out), ligament %.4g m",
+                depth_m, taken, right - left - 2 * depth_m);
+  report += line;
+  return right - left - 2 * depth_m;
+}
+
 // Platens just touching the specimen's top and bottom, three specimen widths wide, closing at the
-// given speed. The lateral strain (UCS) or the opening across the horizontal diameter (Brazilian)
+// given speed (`fracture`: moving apart with the end layers that pull the specimen). The lateral strain (UCS) or the opening across the horizontal diameter (Brazilian)
 // comes from the discs within one largest diameter of the left and right edges.
 LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, WallSet& walls,
                        std::vector<std::uint32_t>& top_layer,
                        std::vector<std::uint32_t>& bottom_layer) {
   const bool biaxial = test.kind() == "biaxial";
   const bool ucs = test.kind() == "ucs" || biaxial;  // the same specimen, platens and gauges
+  const bool fracture = test.kind() == "fracture";
+  if (!fracture && test.has_notch_depth_ratio()) {
+    throw std::invalid_argument(
+        "dem.loading_test.notch_depth_ratio: only kind \"fracture\" has notches");
+  }
+  if (fracture && (test.loading_arc_deg() > 0 ||
+                   (test.has_clamp_end_layers() && !test.clamp_end_layers()))) {
+    throw std::invalid_argument(
+        test.loading_arc_deg() > 0
+            ? "dem.loading_test.loading_arc_deg: the loading arc is for kind \"brazilian\"; a "
+              "fracture specimen is pulled by its end layers"
+            : "dem.loading_test.clamp_end_layers: a fracture specimen is pulled by its end "
+              "layers; leave it out or true");
+  }
   // Each test's holding option belongs to it; refused before anything is built.
   if (biaxial != test.has_confining_stress_pa()) {
     throw std::invalid_argument(
@@ -186,7 +253,7 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
         "dem.loading_test.loading_arc_deg: the loading arc is for kind \"brazilian\"; a UCS "
         "specimen's ends are held with clamp_end_layers");
   }
-  if (!ucs && test.clamp_end_layers()) {
+  if (!ucs && !fracture && test.clamp_end_layers()) {
     throw std::invalid_argument(
         "dem.loading_test.clamp_end_layers: for kind \"ucs\"; a Brazilian disc is held over its "
         "loading arcs with loading_arc_deg");
@@ -202,9 +269,10 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
   LoadingRig rig;
   rig.present = true;
   rig.ucs = ucs;
+  rig.fracture = fracture;
   rig.height0_m = top - bottom;
   rig.width0_m = right - left;
-  const double w = right - left, v = test.platen_speed_m_s();
+  const double w = right - left, v = fracture ? -test.platen_speed_m_s() : test.platen_speed_m_s();
   rig.top = walls.add_body("platen_top", {left - w, top, right + w, top}, false, 0.0, -v);
   rig.bottom = walls.add_body("platen_bottom", {left - w, bottom, right + w, bottom}, false, 0.0, v);
   if (test.has_platen_friction()) {
@@ -238,10 +306,10 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
   for (std::uint32_t i = 0; i < p.size(); ++i) {
     if (p.position[2 * i] - p.radius[i] < left + 2 * r_max) rig.left_strip.push_back(i);
     if (p.position[2 * i] + p.radius[i] > right - 2 * r_max) rig.right_strip.push_back(i);
-    if (!rig.ucs) continue;
-    if (std::abs(p.position[2 * i + 1] - lower) < r_max) rig.lower_gauge.push_back(i);
-    if (std::abs(p.position[2 * i + 1] - upper) < r_max) rig.upper_gauge.push_back(i);
-    if (!test.clamp_end_layers()) continue;
+    if (!rig.ucs && !fracture) continue;
+    if (rig.ucs && std::abs(p.position[2 * i + 1] - lower) < r_max) rig.lower_gauge.push_back(i);
+    if (rig.ucs && std::abs(p.position[2 * i + 1] - upper) < r_max) rig.upper_gauge.push_back(i);
+    if (!test.clamp_end_layers() && !fracture) continue;
     if (p.position[2 * i + 1] + p.radius[i] > top - 2 * r_max) top_layer.push_back(i);
     if (p.position[2 * i + 1] - p.radius[i] < bottom + 2 * r_max) bottom_layer.push_back(i);
   }
@@ -278,6 +346,11 @@ DemSetup build_dem(const rockcut::Dem& dem) {
   DemSetup setup;
   Particles particles = particles_from_scene(dem, setup.specimen_report);
   if (particles.size() == 0) throw std::invalid_argument("dem: the scene makes no particles");
+  double ligament_m = 0.0;  // `fracture`: notched before the bonds are installed
+  if (dem.has_loading_test() && dem.loading_test().kind() == "fracture") {
+    ligament_m = cut_edge_notches(dem.loading_test().notch_depth_ratio(), particles,
+                                  setup.specimen_report);
+  }
   // On top of each disc's own velocity (a packing file's columns; 0 otherwise).
   const double vx = dem.initial_velocity_m_s().x(), vy = dem.initial_velocity_m_s().y();
   for (std::size_t i = 0; i < particles.size(); ++i) {
@@ -353,6 +426,7 @@ DemSetup build_dem(const rockcut::Dem& dem) {
       throw std::invalid_argument("dem.loading_test and dem.tool exclude each other");
     }
     setup.rig = add_platens(dem.loading_test(), particles, walls, top_layer, bottom_layer);
+    setup.rig.ligament_m = ligament_m;
   }
   if (!walls.empty() && !dem.has_contact()) {
     throw std::invalid_argument("dem.walls need dem.contact: walls push discs by contact");
@@ -407,7 +481,8 @@ DemSetup build_dem(const rockcut::Dem& dem) {
     setup.system->add_wall_servo(servo);
   }
   if (setup.rig.clamped_ends) {
-    const double v = dem.loading_test().platen_speed_m_s();
+    // Closing (ucs), or pulling apart (fracture).
+    const double v = (setup.rig.fracture ? -1.0 : 1.0) * dem.loading_test().platen_speed_m_s();
     setup.rig.top_layer_group = setup.system->add_clamped_group(std::move(top_layer), -v);
     setup.rig.bottom_layer_group = setup.system->add_clamped_group(std::move(bottom_layer), v);
   }

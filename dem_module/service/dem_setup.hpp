@@ -28,7 +28,7 @@ struct ToolPlacement {
 /// A platen test as placed around the specimen.
 struct LoadingRig {
   bool present = false;
-  bool ucs = true;                      ///< UCS or biaxial specimen; else Brazilian
+  bool ucs = true;                      ///< UCS or biaxial specimen; else Brazilian or fracture
   bool biaxial = false;                 ///< a confining stress on the sides
   bool side_walls = false;              ///< biaxial by servo-controlled walls; else a membrane
   std::uint32_t left_wall = 0, right_wall = 0;  ///< the servo-controlled side walls
@@ -46,6 +46,10 @@ struct LoadingRig {
   /// DemSystem::clamped_group(top_layer_group) and (bottom_layer_group).
   bool clamped_ends = false;
   std::size_t top_layer_group = 0, bottom_layer_group = 0;
+  /// `fracture`: the end layers pull the double-edge-notched specimen apart; the ligament is the
+  /// width left between the notches (loading_test.notch_depth_ratio).
+  bool fracture = false;
+  double ligament_m = 0.0;
 };
 
 /// Mean x (axis 0) or y (axis 1) of the discs in `strip`; 0 for an empty strip.

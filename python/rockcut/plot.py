@@ -12,8 +12,9 @@ A cutting run (a tool's time series) gets
   OUT/breaks.png  where bonds broke, coloured by mode (tensile, shear).
   Works on a run that is still going or stopped early: it reads what run.h5 holds so far.
 A calibration run (UCS or Brazilian: /timeseries/axial_strain) gets OUT/stress_strain.png, the
-load against the axial strain; with --png FILE every calibration run given is drawn into one
-figure FILE instead (for comparing micro-parameter sets or platen speeds).
+load against the axial strain, and a fracture test OUT/force_elongation.png, the pull against the
+elongation; with --png FILE every calibration run given is drawn into one figure FILE instead (for
+comparing micro-parameter sets or platen speeds).
 
 Exit status: 0 if every OUT was plotted, 1 otherwise, 2 without arguments.
 """

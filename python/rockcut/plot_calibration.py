@@ -1,5 +1,6 @@
 """rockcut plot of calibration runs (UCS or Brazilian: /timeseries/axial_strain): the load against
-the axial strain, one figure per run or all in one (plot.py documents the verb).
+the axial strain, one figure per run or all in one (plot.py documents the verb). A fracture test
+(/timeseries/elongation_m) draws the pull against the elongation instead.
 """
 import os
 
@@ -10,9 +11,14 @@ from .run_data import h5_path, read_summary
 
 
 def load_calibration(out):
+    """x, load, the load's axis label and the summary. x: the axial strain [1e-3], or a fracture
+    test's elongation [um]."""
     with h5py.File(h5_path(out), "r") as f:
         ts = f["timeseries"]
-        strain = ts["axial_strain"][:]
+        if "elongation_m" in ts:
+            return (ts["elongation_m"][:] * 1e6, ts["pulling_force_n_per_m"][:] / 1e3,
+                    "pull [kN/m]", read_summary(out) or {})
+        strain = ts["axial_strain"][:] * 1e3
         if "axial_stress_pa" in ts:
             load_, label = ts["axial_stress_pa"][:] / 1e6, "axial stress [MPa]"
         else:
@@ -38,13 +44,18 @@ def plot_calibration(outs, png=None):
                 name += ")"
             if "bts_pa" in s:
                 name += f" (BTS {s['bts_pa'] / 1e6:.2f} MPa)"
-            ax.plot(strain * 1e3, load_, label=name)
+            fracture = "fracture_energy_j_per_m2" in s
+            if fracture:
+                name += (f" (G_F {s['fracture_energy_j_per_m2']:.1f} J/m^2, net strength "
+                         f"{s['net_tensile_strength_pa'] / 1e6:.2f} MPa)")
+            ax.plot(strain, load_, label=name)
             ax.set_ylabel(label)
-        ax.set_xlabel("axial strain [1e-3]")
+        ax.set_xlabel("elongation [um]" if fracture else "axial strain [1e-3]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
         fig.tight_layout()
-        target = png or os.path.join(group[0], "stress_strain.png")
+        target = png or os.path.join(group[0],
+                                     "force_elongation.png" if fracture else "stress_strain.png")
         fig.savefig(target, dpi=100)
         plt.close(fig)
         print(f"{', '.join(group)}: wrote {target}")

@@ -183,6 +183,11 @@ TEST(CalibrationRun, HoldingOptionsOfTheOtherTestAreRefused) {
       {"ucs", "dem.loading_test.confining_stress_pa=1e6"},       // no side walls
       {"biaxial", "dem.loading_test.confining_stress_pa=-1"},    // below the field's minimum
       {"ucs", "dem.loading_test.confinement=walls"},              // no confining stress
+      {"ucs", "dem.loading_test.notch_depth_ratio=0.2"},          // only a fracture test's
+      {"fracture", "dem.loading_test.loading_arc_deg=15"},
+      {"fracture", "dem.loading_test.clamp_end_layers=false"},    // it pulls by its end layers
+      {"fracture", "dem.loading_test.notch_depth_ratio=0.5"},     // above the field's maximum
+      {"fracture", "dem.loading_test.notch_depth_ratio=0.001"},   // holds no disc
   };
   for (const auto& [test, set] : cases) {
     const fs::path dir = fresh_dir("refused_" + test);

@@ -1,0 +1,80 @@
+#include "observers/fracture_summary.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace rockcut::coupler {
+
+FractureSummary::FractureSummary(const rockcut::Scene& scene)
+    : stop_at_separation_(scene.dem().loading_test().stop_at_split()) {}
+
+void FractureSummary::observe(const std::vector<std::pair<std::string, double>>& scalars) {
+  const double* pull = find_value(scalars, "pulling_force_n_per_m");
+  const double* elongation = find_value(scalars, "elongation_m");
+  const double* ligament = find_value(scalars, "ligament_m");
+  const double* work = find_value(scalars, "boundary_work_j");
+  if (!pull || !elongation || !ligament || !work || separated_) return;
+  ligament_m_ = *ligament;
+  elongation_m_ = *elongation;
+  work_j_ = *work;
+  if (*pull > peak_n_per_m_) {
+    peak_n_per_m_ = *pull;
+    peak_elongation_m_ = *elongation;
+    work_at_peak_j_ = *work;
+    quiet_since_m_ = -1.0;
+    return;
+  }
+  if (peak_n_per_m_ <= 0 || std::abs(*pull) > kSeparatedFraction * peak_n_per_m_) {
+    quiet_since_m_ = -1.0;
+    return;
+  }
+  if (quiet_since_m_ < 0) quiet_since_m_ = *elongation;
+  if (*elongation - quiet_since_m_ >= peak_elongation_m_) {
+    separated_ = true;
+    separation_elongation_m_ = quiet_since_m_;
+  }
+}
+
+void FractureSummary::write(Summary& summary) const {
+  if (ligament_m_ <= 0) return;
+  // Per metre of thickness: J/m over m is J/m^2, N/m over m is Pa.
+  summary.set("fracture_energy_j_per_m2", work_j_ / ligament_m_);
+  summary.set("work_to_peak_j_per_m2", work_at_peak_j_ / ligament_m_);
+  summary.set("net_tensile_strength_pa", peak_n_per_m_ / ligament_m_);
+  summary.set("peak_force_n_per_m", peak_n_per_m_);
+  summary.set("peak_elongation_m", peak_elongation_m_);
+  summary.set("ligament_m", ligament_m_);
+  summary.set("separated", separated_);
+  if (separated_) summary.set("separation_elongation_m", separation_elongation_m_);
+}
+
+void FractureSummary::save_state(state::StateArchive& a) const {
+  a.put("fracture_summary",
+        std::vector<double>{separated_ ? 1.0 : 0.0, ligament_m_, peak_n_per_m_, peak_elongation_m_,
+                            work_at_peak_j_, quiet_since_m_, elongation_m_, work_j_,
+                            separation_elongation_m_});
+}
+
+void FractureSummary::load_state(const state::StateArchive& a) {
+  const auto v = a.values("fracture_summary", 9);
+  separated_ = v[0] != 0.0;
+  ligament_m_ = v[1];
+  peak_n_per_m_ = v[2];
+  peak_elongation_m_ = v[3];
+  work_at_peak_j_ = v[4];
+  quiet_since_m_ = v[5];
+  elongation_m_ = v[6];
+  work_j_ = v[7];
+  separation_elongation_m_ = v[8];
+}
+
+std::string FractureSummary::end_reason(const RunClock& clock) const {
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "the notched specimen came apart at t = %.6g s: test ended "
+                "(loading_test.stop_at_split)",
+                clock.time_s);
+  return line;
+}
+
+}  // namespace rockcut::coupler

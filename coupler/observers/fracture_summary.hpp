@@ -1,0 +1,49 @@
+// The work of fracture of a double-edge-notched specimen pulled apart (scene dem.loading_test,
+// kind `fracture`): Hillerborg's G_F, the work of the pulling ends until the specimen has come
+// apart over the ligament's area (Hillerborg 1985, RILEM TC 50-FMC; per metre of thickness here).
+// The DEM books the ends' work exactly every step (its energy ledger's boundary work); this
+// observer reads it with the pull and the elongation at each time-series row.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "observers/run_observer.hpp"
+#include "output/summary_json.hpp"
+#include "rockcut/scene.pb.h"
+#include "wire/state_archive.hpp"
+
+namespace rockcut::coupler {
+
+class FractureSummary : public RunObserver {
+ public:
+  explicit FractureSummary(const rockcut::Scene& scene);
+  /// One time-series sample of the DEM's scalars.
+  void observe(const std::vector<std::pair<std::string, double>>& scalars);
+  void write(Summary& summary) const;
+  void row(const RunClock& clock) override { observe(clock.scalars); }
+  bool finish(const RunClock&, Summary& summary, bool) override {
+    write(summary);
+    return true;
+  }
+  bool ends_run() const override { return stop_at_separation_ && separated_; }
+  std::string end_reason(const RunClock& clock) const override;
+  void save_state(state::StateArchive& a) const override;
+  void load_state(const state::StateArchive& a) override;
+
+  /// The specimen has come apart when the pull has stayed within this fraction of its peak
+  /// (either way: the halves ring) while the ends moved apart by as much again as at the peak.
+  static constexpr double kSeparatedFraction = 0.02;
+
+ private:
+  bool stop_at_separation_ = true;
+  bool separated_ = false;
+  double ligament_m_ = 0.0;
+  double peak_n_per_m_ = 0.0, peak_elongation_m_ = 0.0, work_at_peak_j_ = 0.0;
+  double quiet_since_m_ = -1.0;  // elongation where the pull last came within the fraction; -1: not
+  double elongation_m_ = 0.0, work_j_ = 0.0;  // the latest sample
+  double separation_elongation_m_ = 0.0;
+};
+
+}  // namespace rockcut::coupler

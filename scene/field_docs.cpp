@@ -171,7 +171,7 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
     {"rockcut.LoadingTest.platen_speed_m_s",
      "Speed of each platen; the axial strain rate is 2 * speed / height."},
     {"rockcut.LoadingTest.stop_at_split",
-     "Brazilian: end the run at the split instead of at time.end_time_s (summary.json then has split_detected true and the axial strain of the split). The halves would otherwise be crushed between the platens, which costs run time and tells nothing about the tensile strength. Fracture: end the run once the specimen has come apart (separated true): the pulling force has stayed within 2 % of its peak, either way, while the ends moved apart by as much again as they had at the peak."},
+     "Brazilian: end the run at the split instead of at time.end_time_s (summary.json then has split_detected true and the axial strain of the split). The halves would otherwise be crushed between the platens, which costs run time and tells nothing about the tensile strength. Fracture: end the run once the specimen has come apart (separated true): after the pull has fallen below half its peak, its mean over the last stretch of elongation as long as the elongation at the peak (the ends' work over it, divided by it) is below 2 % of the peak."},
     {"rockcut.Output.checkpoint_interval_s",
      "Simulated time between two checkpoints in OUT/checkpoints/ (`coupler resume OUT` continues from the newest). 0: none on simulated time; `coupler run --checkpoint-every SECONDS` (wall time, default 600 s), SIGUSR1, SIGTERM, SIGINT and the end of the run still write one."},
     {"rockcut.Output.checkpoints_kept",

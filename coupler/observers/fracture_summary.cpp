@@ -17,21 +17,24 @@ void FractureSummary::observe(const std::vector<std::pair<std::string, double>>&
   ligament_m_ = *ligament;
   elongation_m_ = *elongation;
   work_j_ = *work;
-  if (*pull > peak_n_per_m_) {
+  if (!dropped_ && *pull > peak_n_per_m_) {
     peak_n_per_m_ = *pull;
     peak_elongation_m_ = *elongation;
     work_at_peak_j_ = *work;
-    quiet_since_m_ = -1.0;
     return;
   }
-  if (peak_n_per_m_ <= 0 || std::abs(*pull) > kSeparatedFraction * peak_n_per_m_) {
-    quiet_since_m_ = -1.0;
-    return;
-  }
-  if (quiet_since_m_ < 0) quiet_since_m_ = *elongation;
-  if (*elongation - quiet_since_m_ >= peak_elongation_m_) {
+  if (!dropped_ && *pull >= kDroppedFraction * peak_n_per_m_) return;
+  dropped_ = true;
+  after_drop_.insert(after_drop_.end(), {*elongation, *work});
+  // The latest sample at least one peak elongation back.
+  const double from_m = *elongation - peak_elongation_m_;
+  std::size_t k = after_drop_.size();
+  while (k >= 2 && after_drop_[k - 2] > from_m) k -= 2;
+  if (k < 2) return;  // not a stretch that long since the drop yet
+  const double stretch_m = *elongation - after_drop_[k - 2];
+  if (*work - after_drop_[k - 1] < kSeparatedFraction * peak_n_per_m_ * stretch_m) {
     separated_ = true;
-    separation_elongation_m_ = quiet_since_m_;
+    separation_elongation_m_ = after_drop_[k - 2];
   }
 }
 
@@ -51,8 +54,9 @@ void FractureSummary::write(Summary& summary) const {
 void FractureSummary::save_state(state::StateArchive& a) const {
   a.put("fracture_summary",
         std::vector<double>{separated_ ? 1.0 : 0.0, ligament_m_, peak_n_per_m_, peak_elongation_m_,
-                            work_at_peak_j_, quiet_since_m_, elongation_m_, work_j_,
+                            work_at_peak_j_, dropped_ ? 1.0 : 0.0, elongation_m_, work_j_,
                             separation_elongation_m_});
+  a.put("fracture_after_drop", after_drop_, 2);
 }
 
 void FractureSummary::load_state(const state::StateArchive& a) {
@@ -62,10 +66,11 @@ void FractureSummary::load_state(const state::StateArchive& a) {
   peak_n_per_m_ = v[2];
   peak_elongation_m_ = v[3];
   work_at_peak_j_ = v[4];
-  quiet_since_m_ = v[5];
+  dropped_ = v[5] != 0.0;
   elongation_m_ = v[6];
   work_j_ = v[7];
   separation_elongation_m_ = v[8];
+  a.get("fracture_after_drop", after_drop_);
 }
 
 std::string FractureSummary::end_reason(const RunClock& clock) const {

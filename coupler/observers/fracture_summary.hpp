@@ -32,16 +32,21 @@ class FractureSummary : public RunObserver {
   void save_state(state::StateArchive& a) const override;
   void load_state(const state::StateArchive& a) override;
 
-  /// The specimen has come apart when the pull has stayed within this fraction of its peak
-  /// (either way: the halves ring) while the ends moved apart by as much again as at the peak.
+  /// The specimen has come apart when, once the pull has fallen below half its peak, the ends'
+  /// work over the last stretch as long as the elongation at the peak is below this fraction of
+  /// the peak pull times that stretch: the mean pull over it, in which the halves' ringing
+  /// averages out (their pull swings by a tenth of the peak under light dashpots).
   static constexpr double kSeparatedFraction = 0.02;
+  static constexpr double kDroppedFraction = 0.5;
 
  private:
   bool stop_at_separation_ = true;
   bool separated_ = false;
   double ligament_m_ = 0.0;
   double peak_n_per_m_ = 0.0, peak_elongation_m_ = 0.0, work_at_peak_j_ = 0.0;
-  double quiet_since_m_ = -1.0;  // elongation where the pull last came within the fraction; -1: not
+  bool dropped_ = false;  // the pull has fallen below kDroppedFraction of its peak
+  // (elongation, work) of the samples since it dropped, for the mean pull over the last stretch.
+  std::vector<double> after_drop_;
   double elongation_m_ = 0.0, work_j_ = 0.0;  // the latest sample
   double separation_elongation_m_ = 0.0;
 };

@@ -11,13 +11,15 @@ and writes
                             deviation of the mean from Table 1.
 Without --no-defaults the sets include the scenes as they are (the calibrated set), Table 1 as
 printed and Table 1 with K_n and K_s swapped (DESIGN section 4). Each further set is a NAME and its
---set options in one argument, applied to both scenes.
+--set options in one argument, applied to both scenes. --fracture also runs the fracture test
+(cases/calibration/fracture.pbtxt) of every set and seed, and adds its work of fracture [J/m^2] and
+net tensile strength [MPa] to both tables (Table 1 gives neither: no deviation).
 
   rockcut calibrate out/calibration
   rockcut calibrate out/cal --seeds 1,2,3,4,5 --no-defaults tuned \\
       "--set dem.bonds.tensile_strength_n_per_m=1.3e4 --set dem.loading_test.platen_speed_m_s=0.01"
 
-One UCS run takes 30-60 s and one Brazilian run about 25 s on one core.
+One UCS run takes 30-60 s, one Brazilian run about 25 s and one fracture test 5-15 s on one core.
 """
 import argparse
 import concurrent.futures
@@ -31,6 +33,8 @@ from .run_data import read_summary
 from .stats import mean_and_error
 
 TABLE1 = {"ucs_mpa": 13.8, "youngs_modulus_gpa": 5.5, "poisson_ratio": 0.22, "bts_mpa": 2.55}
+# --fracture: measured, with no target.
+FRACTURE = ("fracture_energy_j_per_m2", "net_tensile_strength_mpa")
 STRENGTHS = ("--set dem.bonds.tensile_strength_n_per_m=1e4 "
              "--set dem.bonds.shear_strength_n_per_m=2e4")
 PRINTED = ("--set dem.bonds.normal_stiffness_pa=1e10 --set dem.bonds.shear_stiffness_pa=2.5e10 "
@@ -73,12 +77,14 @@ def main(arguments):
                         help="runs at once (default: the number of cores)")
     parser.add_argument("--no-defaults", action="store_true",
                         help="skip the scenes', the as-printed and the swapped sets")
+    parser.add_argument("--fracture", action="store_true",
+                        help="also run the fracture test: work of fracture and net strength")
     # A set's options start with "--set", which argparse would take for an option of this script:
     # pass every argument that is not one of this script's options as a positional one.
     argv, rest = [], []
     it = iter(arguments)
     for a in it:
-        if a in ("-h", "--help", "--no-defaults"):
+        if a in ("-h", "--help", "--no-defaults", "--fracture"):
             argv.append(a)
         elif a in ("--seeds", "--jobs"):
             argv += [a, next(it, "")]
@@ -102,11 +108,12 @@ def main(arguments):
             os.makedirs(os.path.join(args.out, name, f"seed{seed}"), exist_ok=True)
 
     jobs = {}
+    tests = ("ucs", "brazilian") + (("fracture",) if args.fracture else ())
     runs.side_by_side(args.jobs)
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         for name, opts in sets:
             for seed in seeds:
-                for test in ("ucs", "brazilian"):
+                for test in tests:
                     jobs[(name, seed, test)] = pool.submit(run_one, args.out, name, opts, seed, test, coupler)
         results = {key: job.result() for key, job in jobs.items()}
 
@@ -123,17 +130,28 @@ def main(arguments):
                          "split_detected": b.get("split_detected", False),
                          "wall_time_s": u["wall_time_s"] + b["wall_time_s"],
                          "overrides": opts})
+            if args.fracture:
+                g = results[(name, seed, "fracture")]
+                rows[-1].update({"fracture_energy_j_per_m2": g["fracture_energy_j_per_m2"],
+                                 "net_tensile_strength_mpa": g["net_tensile_strength_pa"] / 1e6,
+                                 "separated": g.get("separated", False),
+                                 "wall_time_s": rows[-1]["wall_time_s"] + g["wall_time_s"]})
+                rows[-1]["overrides"] = rows[-1].pop("overrides")  # the last column
     campaign.write_rows(os.path.join(args.out, "calibration_runs.csv"), rows)
 
     summary = os.path.join(args.out, "calibration.csv")
     with open(summary, "w", newline="") as f:
         w = csv.writer(f)
         header = ["set", "seeds"]
+        measured = FRACTURE if args.fracture else ()
         for key in TABLE1:
             header += [key, key + "_stderr", key + "_deviation"]
+        for key in measured:
+            header += [key, key + "_stderr"]
         header += ["overrides"]
         w.writerow(header)
-        print(f"{'set':<14}" + "".join(f"{k:>30}" for k in TABLE1))
+        print(f"{'set':<14}" + "".join(f"{k:>30}" for k in TABLE1)
+              + "".join(f"{k:>26}" for k in measured))
         for name, opts in sets:
             mine = [r for r in rows if r["set"] == name]
             row, line = [name, len(mine)], f"{name:<14}"
@@ -142,6 +160,10 @@ def main(arguments):
                 dev = m / target - 1.0
                 row += [f"{m:.4g}", f"{e:.2g}", f"{dev:+.3f}"]
                 line += f"{m:>12.3g} +- {e:<7.2g}({dev:+6.1%})"
+            for key in measured:
+                m, e = mean_and_error([r[key] for r in mine])
+                row += [f"{m:.4g}", f"{e:.2g}"]
+                line += f"{m:>15.3g} +- {e:<7.2g}"
             w.writerow(row + [opts])
             print(line)
         print(f"{'Table 1':<14}" + "".join(f"{v:>12.3g}{'':>18}" for v in TABLE1.values()))

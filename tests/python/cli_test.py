@@ -65,6 +65,25 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         self.assertGreater(os.path.getsize(png), 1000)
 
+    def test_plot_draws_a_fracture_test_as_pull_against_elongation(self):
+        out = os.path.join(ARGS.tmp, "cli_fracture")
+        os.makedirs(out, exist_ok=True)
+        elongation = np.linspace(0.0, 3e-5, 50)
+        with h5py.File(os.path.join(out, "run.h5"), "w") as f:
+            f["timeseries/axial_strain"] = -elongation / 0.02
+            f["timeseries/elongation_m"] = elongation
+            f["timeseries/pulling_force_n_per_m"] = np.minimum(7e9 * elongation, 1e5)
+        with open(os.path.join(out, "summary.json"), "w") as f:
+            json.dump({"title": "fracture", "fracture_energy_j_per_m2": 44.0,
+                       "net_tensile_strength_pa": 5.1e6}, f)
+        for name in ("force_elongation.png", "stress_strain.png"):
+            if os.path.exists(os.path.join(out, name)):
+                os.remove(os.path.join(out, name))
+        r = rockcut("plot", out)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertGreater(os.path.getsize(os.path.join(out, "force_elongation.png")), 1000)
+        self.assertFalse(os.path.exists(os.path.join(out, "stress_strain.png")))
+
 
 if __name__ == "__main__":
     ARGS, rest = harness.arguments()

@@ -194,7 +194,17 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"calibration/biaxial", "2", "ipc",
                            {"--set", "dem.specimen.width_m=0.0125", "--set",
                             "dem.specimen.height_m=0.025", "--set", "time.end_time_s=0.0025"},
-                           "_small"}),
+                           "_small"},
+                      // The fracture test's summary (the pull's drop and the ends' work since)
+                      // across its peak (0.4 ms) and drop, on softening bonds.
+                      Case{"calibration/fracture", "1", "ipc",
+                           {"--set", "dem.specimen.width_m=0.02", "--set",
+                            "dem.specimen.height_m=0.01", "--set",
+                            "dem.loading_test.platen_speed_m_s=0.02", "--set",
+                            "dem.bonds.softening_ratio=9", "--set", "dem.damping.model=viscous",
+                            "--set", "dem.damping.damping_ratio=0.005", "--set",
+                            "time.end_time_s=0.0025"},
+                           "_small_softening"}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string scene = info.param.scene;
       std::replace(scene.begin(), scene.end(), '/', '_');

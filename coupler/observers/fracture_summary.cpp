@@ -17,11 +17,13 @@ void FractureSummary::observe(const std::vector<std::pair<std::string, double>>&
   ligament_m_ = *ligament;
   elongation_m_ = *elongation;
   work_j_ = *work;
-  if (!dropped_ && *pull > peak_n_per_m_) {
+  // The peak is the largest pull so far. A dip at the start (the first samples of a specimen
+  // settling) may count as the drop; the mean pull over the stretch since then stays at the
+  // rising pull, so it cannot end the test.
+  if (*pull > peak_n_per_m_) {
     peak_n_per_m_ = *pull;
     peak_elongation_m_ = *elongation;
     work_at_peak_j_ = *work;
-    return;
   }
   if (!dropped_ && *pull >= kDroppedFraction * peak_n_per_m_) return;
   dropped_ = true;

@@ -7,11 +7,12 @@ import re
 from . import runs
 
 UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
-# phi: the peak friction angle of the Mohr-Coulomb envelope through the UCS and one confined test.
+# phi: the peak friction angle of the Mohr-Coulomb envelope through the UCS and one confined test;
+# gf: the work of fracture of the fracture test (cases/calibration/fracture.pbtxt).
 PROPERTIES = {"ucs": "ucs_pa", "bts": "bts_pa", "E": "youngs_modulus_pa", "nu": "poisson_ratio",
-              "phi": "friction_angle_deg"}
+              "phi": "friction_angle_deg", "gf": "fracture_energy_j_per_m2"}
 SHOWN = {"ucs": (1e6, "MPa"), "bts": (1e6, "MPa"), "E": (1e9, "GPa"), "nu": (1.0, ""),
-         "phi": (1.0, "deg")}
+         "phi": (1.0, "deg"), "gf": (1.0, "J/m^2")}
 
 
 def fail(message):
@@ -34,7 +35,7 @@ def parse_targets(text):
                  + f"; allowed: {', '.join(PROPERTIES)}")
         if name in targets:
             fail(f"--target: '{name}' is given twice")
-        m = re.fullmatch(r"\s*([-+]?[0-9.]+(?:[eE][-+]?[0-9]+)?)\s*([A-Za-z]*)\s*", value)
+        m = re.fullmatch(r"\s*([-+]?[0-9.]+(?:[eE][-+]?[0-9]+)?)\s*([A-Za-z/^0-9]*)\s*", value)
         if not m:
             fail(f"--target: {name}: '{value}' is not a number")
         number, unit = float(m.group(1)), m.group(2)
@@ -43,6 +44,13 @@ def parse_targets(text):
                 fail(f"--target: nu has no unit, got '{value}'")
             if not 0.0 < number < 0.5:
                 fail(f"--target: nu = {number:g} is outside 0 < nu < 0.5")
+            targets[name] = number
+            continue
+        if name == "gf":
+            if unit not in ("J/m2", "J/m^2"):
+                fail(f"--target: gf={value} needs the unit J/m2, e.g. gf=60J/m2")
+            if number <= 0:
+                fail(f"--target: gf = {value} must be above 0")
             targets[name] = number
             continue
         if name == "phi":

@@ -55,7 +55,10 @@ def write_rock(path, start_rock, params, targets, means, errors, seeds, command,
               "  bonds {",
               f"    normal_stiffness_pa: {kn:.4g}", f"    shear_stiffness_pa: {ks:.4g}",
               f"    tensile_strength_n_per_m: {tn:.4g}", f"    shear_strength_n_per_m: {ts:.4g}",
-              f"    friction_angle_deg: {params['phi_b_deg']:.4g}", "  }"]
+              f"    friction_angle_deg: {params['phi_b_deg']:.4g}"]
+    if params.get("softening", 0.0) > 0 or "gf" in targets:
+        lines += [f"    softening_ratio: {params.get('softening', 0.0):.4g}"]
+    lines += ["  }"]
     if damping:
         lines += ["  # the damping the loading tests ran under: the strengths above hold under it",
                   f"  damping {{ {' '.join(damping.split())} }}"]

@@ -47,7 +47,52 @@ def cold_start(targets, rock, model):
     if rock.get("damping_model") == "viscous":
         tn /= s["viscous_factor"]  # the factors above are local damping's; dashpots weaken ~10 %
     phi_b = bond_friction_for(targets["phi"], model) if "phi" in targets else rock["phi_b_deg"]
-    return {"kn": kn, "ks_ratio": r, "tn": tn, "ts_ratio": rock["ts_ratio"], "phi_b_deg": phi_b}
+    # The softening ratio starts at the starting rock's: the work of fracture at the target
+    # strengths is not known before a round has measured it (it depends on the damping too).
+    lam = rock.get("softening", 0.0)
+    return {"kn": kn, "ks_ratio": r, "tn": tn / strength_factor(lam, model),
+            "ts_ratio": rock["ts_ratio"], "phi_b_deg": phi_b, "softening": lam}
+
+
+def strength_factor(lam, model):
+    """The strengths' factor of softening ratio `lam` over the paper's bond at a fixed T."""
+    return interpolate(model["softening"]["table"], lam, 0, 1)
+
+
+def fracture_factor(lam, model):
+    """The work of fracture's factor of softening ratio `lam` over the paper's bond at a fixed T."""
+    return interpolate(model["softening"]["table"], lam, 0, 2)
+
+
+def softening_for(rounds, targets, model):
+    """(lambda, R, T0): the softening ratio whose work of fracture meets targets["gf"] at the
+    strengths the targets ask, from the rounds so far. Every round estimates the bond strength
+    that meets the strength targets with the paper's bond, T0 (its T times its lambda's strength
+    factor times target / measured), and its work of fracture per T^2 with the paper's bond,
+    g0 = G_F / (fracture factor T^2); both are pooled as geometric means over the rounds. At
+    lambda the strengths ask T0 / S(lambda), so the work of fracture is g0 T0^2 Gamma / S^2:
+    lambda solves Gamma/S^2 = R = gf / (g0 T0^2), through the table (Gamma/S^2 grows with
+    lambda there). R below 1 is below what the paper's bond gives; lambda is then 0. Above the
+    table's last row lambda is that row's."""
+    names = [k for k in ("ucs", "bts") if k in targets]
+    t0, g0 = [], []
+    for _, q, m, _ in rounds:
+        lam = q.get("softening", 0.0)
+        t = q["tn"] * strength_factor(lam, model)
+        t0.append(math.log(t) + sum(math.log(targets[k] / m[k]) for k in names) / len(names))
+        if m.get("gf") == m.get("gf"):
+            g0.append(math.log(m["gf"] / (fracture_factor(lam, model) * q["tn"] ** 2)))
+    t0 = math.exp(sum(t0) / len(t0))
+    if not g0:
+        return rounds[-1][1].get("softening", 0.0), math.nan, t0
+    ratio = targets["gf"] / (math.exp(sum(g0) / len(g0)) * t0 ** 2)
+    rows = [(r[0], r[2] / r[1] ** 2) for r in model["softening"]["table"]]
+    if ratio <= rows[0][1]:
+        return rows[0][0], ratio, t0
+    for (la, ha), (lb, hb) in zip(rows, rows[1:]):
+        if ratio <= hb:
+            return la + (ratio - ha) / (hb - ha) * (lb - la), ratio, t0
+    return rows[-1][0], ratio, t0
 
 
 def next_params(rounds, targets, model):
@@ -81,6 +126,11 @@ def next_params(rounds, targets, model):
     names = [k for k in ("ucs", "bts") if k in targets]
     # Only the rounds at this bond friction: it lifts the strengths too.
     same = [r for r in rounds if abs(r[1]["phi_b_deg"] - p["phi_b_deg"]) < 0.5] or rounds[-1:]
+    if "gf" in targets:
+        # The softening ratio and the bond strength move together: softening lifts the strengths.
+        p["softening"], _, t0 = softening_for(same, targets, model)
+        p["tn"] = t0 / strength_factor(p["softening"], model)
+        return p
     estimates = [math.log(q["tn"]) + sum(math.log(targets[k] / m[k]) for k in names) / len(names)
                  for _, q, m, _ in same]
     p["tn"] = math.exp(sum(estimates) / len(estimates))

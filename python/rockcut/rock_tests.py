@@ -1,11 +1,11 @@
-"""The rock's loading tests (cases/calibration: ucs, brazilian, biaxial) for one rock file and a
+"""The rock's loading tests (cases/calibration: ucs, brazilian, biaxial, fracture) for one rock file and a
 set of micro-parameters on several specimen seeds, each in a folder of its own: side by side on
 this machine (--jobs), or as Slurm job arrays (slurm.py, the script `rockcut sweep --scheduler
 slurm` submits), one array per test scene. A run whose folder already holds a completed
 summary.json of the same request is not run again, so `rockcut calibrate --target` and
 `rockcut envelope` started again on their folder resume where they stopped.
 
-    OUT/scenes/{ucs,brazilian,biaxial}.pbtxt   the test scenes on the rock file (`base:`)
+    OUT/scenes/{ucs,brazilian,biaxial,fracture}.pbtxt   the test scenes on the rock file (`base:`)
     .../<test>/seed=<S>/                        one run: request.json (its scene and --set
                                                 options), the coupler's output, log.txt
     .../<test>/job.sbatch, tasks.tsv, ...       with Slurm: that test's job array
@@ -20,7 +20,7 @@ import time
 from . import campaign, runs, slurm
 from .summary_file import read_json, read_summary
 
-TESTS = ("ucs", "brazilian", "biaxial")
+TESTS = ("ucs", "brazilian", "biaxial", "fracture")
 REQUEST = "request.json"
 # With Slurm: how often the folders are looked at, and how long nothing may change (no run's log
 # grows, no run ends) before the wait gives up and names the runs still missing.
@@ -197,12 +197,13 @@ def slurm_options(args):
 
 
 def micro_sets(params):
-    """--set values of a parameter dict (kn, ks_ratio, tn, ts_ratio, phi_b_deg; contacts take the
-    bonds' stiffnesses, as in the shipped rocks)."""
+    """--set values of a parameter dict (kn, ks_ratio, tn, ts_ratio, phi_b_deg and softening;
+    contacts take the bonds' stiffnesses, as in the shipped rocks)."""
     kn, ks = params["kn"], params["kn"] * params["ks_ratio"]
     tn = params["tn"]
     return [f"dem.bonds.normal_stiffness_pa={kn:.6g}", f"dem.bonds.shear_stiffness_pa={ks:.6g}",
             f"dem.contact.normal_stiffness_pa={kn:.6g}", f"dem.contact.shear_stiffness_pa={ks:.6g}",
             f"dem.bonds.tensile_strength_n_per_m={tn:.6g}",
             f"dem.bonds.shear_strength_n_per_m={tn * params['ts_ratio']:.6g}",
-            f"dem.bonds.friction_angle_deg={params['phi_b_deg']:.6g}"]
+            f"dem.bonds.friction_angle_deg={params['phi_b_deg']:.6g}"] + (
+        [f"dem.bonds.softening_ratio={params['softening']:.6g}"] if "softening" in params else [])

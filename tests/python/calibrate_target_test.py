@@ -60,6 +60,8 @@ class Refusals(unittest.TestCase):
             "ucs=40MPa,bts=4MPa,E=20GPa,nu=0.25": "UCS/BTS = 10.00 is outside",
             "ucs=13.8MPa,phi=20": "needs the unit deg",
             "ucs=13.8MPa,phi=30deg": "phi = 30 deg is outside what the bonded discs reach",
+            "ucs=13.8MPa,gf=60": "needs the unit J/m2",
+            "ucs=13.8MPa,gf=-5J/m2": "must be above 0",
         }
         for target, words in cases.items():
             p = rockcut("calibrate", "--target", target, "--out", out)
@@ -90,6 +92,48 @@ class ColdStart(unittest.TestCase):
         # local damping, 7.18 kN/m under dashpots) within what eight seeds resolve (5 %).
         self.assertAlmostEqual(local["tn"] / 6.65e3, 1.0, delta=0.05)
         self.assertAlmostEqual(viscous["tn"] / 7.18e3, 1.0, delta=0.05)
+
+
+class Softening(unittest.TestCase):
+    """The work of fracture's rule (rock_structure.softening_for) on a synthetic rock that obeys
+    the structure's softening table exactly: strengths c T S(lambda), work of fracture
+    g T^2 Gamma(lambda). From the paper's bond the rule must land on the softening ratio and T
+    that give the targets."""
+
+    def synthetic(self, params, model):
+        lam, t = params["softening"], params["tn"]
+        s = rock_structure.strength_factor(lam, model)
+        return {"ucs": 2.0e3 * t * s, "bts": 0.37e3 * t * s,
+                "gf": 1.3e-6 * t * t * rock_structure.fracture_factor(lam, model)}
+
+    def test_the_rule_finds_the_softening_ratio_of_a_target_work_of_fracture(self):
+        model = structure()
+        want = {"softening": 4.0, "tn": 7.0e3}  # a row of the table: the inversion is exact there
+        targets = self.synthetic(want, model)
+        params = {"kn": 7.25e9, "ks_ratio": 0.5, "tn": 6.0e3, "ts_ratio": 1.0, "phi_b_deg": 0.0,
+                  "softening": 0.0}
+        rounds = []
+        for k in range(1, 4):
+            rounds.append((k, dict(params), self.synthetic(params, model), {}))
+            params = rock_structure.next_params(rounds, targets, model)
+        self.assertAlmostEqual(params["softening"], 4.0, delta=1e-9)
+        self.assertAlmostEqual(params["tn"] / 7.0e3, 1.0, delta=1e-9)
+        # Between rows the table is interpolated: within a tenth of a step of lambda.
+        targets = self.synthetic({"softening": 6.0, "tn": 7.0e3}, model)
+        lam, ratio, _ = rock_structure.softening_for(rounds[:1], targets, model)
+        self.assertAlmostEqual(lam, 6.0, delta=0.5)
+        self.assertGreater(ratio, 1.0)
+
+    def test_a_work_of_fracture_below_the_paper_bonds_asks_no_softening(self):
+        model = structure()
+        params = {"tn": 6.0e3, "softening": 0.0}
+        targets = self.synthetic({"softening": 0.0, "tn": 7.0e3}, model)
+        targets["gf"] *= 0.5
+        lam, ratio, t0 = rock_structure.softening_for(
+            [(1, params, self.synthetic(params, model), {})], targets, model)
+        self.assertEqual(lam, 0.0)
+        self.assertAlmostEqual(ratio, 0.5, delta=1e-9)
+        self.assertAlmostEqual(t0 / 7.0e3, 1.0, delta=1e-9)
 
 
 class RoundTrip(unittest.TestCase):

@@ -165,6 +165,22 @@ void select_loading_arcs(double arc_deg, double r_max, const Particles& p,
   }
 }
 
+// The box around the discs' edges and the largest radius.
+struct DiscExtent {
+  double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
+};
+DiscExtent disc_extent(const Particles& p) {
+  DiscExtent e;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    e.left = std::min(e.left, p.position[2 * i] - p.radius[i]);
+    e.right = std::max(e.right, p.position[2 * i] + p.radius[i]);
+    e.top = std::max(e.top, p.position[2 * i + 1] + p.radius[i]);
+    e.bottom = std::min(e.bottom, p.position[2 * i + 1] - p.radius[i]);
+    e.r_max = std::max(e.r_max, p.radius[i]);
+  }
+  return e;
+}
+
 // The particles whose `keep` is set, in their order, with all their state.
 Particles kept_particles(const Particles& p, const std::vector<char>& keep) {
   Particles out;
@@ -189,22 +205,17 @@ Particles kept_particles(const Particles& p, const std::vector<char>& keep) {
 // installed: the discs whose centres lie within one largest radius of mid-height and within the
 // notch depth of the left or right side. Returns the ligament left between them [m].
 double cut_edge_notches(double depth_ratio, Particles& p, std::string& report) {
-  double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    left = std::min(left, p.position[2 * i] - p.radius[i]);
-    right = std::max(right, p.position[2 * i] + p.radius[i]);
-    top = std::max(top, p.position[2 * i + 1] + p.radius[i]);
-    bottom = std::min(bottom, p.position[2 * i + 1] - p.radius[i]);
-    r_max = std::max(r_max, p.radius[i]);
-  }
+  const auto [left, right, top, bottom, r_max] = disc_extent(p);
   const double depth_m = depth_ratio * (right - left), mid_m = 0.5 * (top + bottom);
   std::vector<char> keep(p.size(), 1);
   std::size_t taken = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double x = p.position[2 * i];
-    const bool in_notch = (x < left + depth_m || x > right - depth_m) &&
-                          std::abs(p.position[2 * i + 1] - mid_m) < r_max;
-    if (in_notch) keep[i] = 0, ++taken;
+    if ((x < left + depth_m || x > right - depth_m) &&
+        std::abs(p.position[2 * i + 1] - mid_m) < r_max) {
+      keep[i] = 0;
+      ++taken;
+    }
   }
   if (depth_m > 0 && taken == 0) {
     throw std::invalid_argument("dem.loading_test.notch_depth_ratio: notches " +
@@ -258,14 +269,7 @@ LoadingRig add_platens(const rockcut::LoadingTest& test, const Particles& p, Wal
         "dem.loading_test.clamp_end_layers: for kind \"ucs\"; a Brazilian disc is held over its "
         "loading arcs with loading_arc_deg");
   }
-  double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    left = std::min(left, p.position[2 * i] - p.radius[i]);
-    right = std::max(right, p.position[2 * i] + p.radius[i]);
-    top = std::max(top, p.position[2 * i + 1] + p.radius[i]);
-    bottom = std::min(bottom, p.position[2 * i + 1] - p.radius[i]);
-    r_max = std::max(r_max, p.radius[i]);
-  }
+  const auto [left, right, top, bottom, r_max] = disc_extent(p);
   LoadingRig rig;
   rig.present = true;
   rig.ucs = ucs;

@@ -201,7 +201,8 @@ def main(argv):
             # Softening raises the work of fracture at given strengths; it cannot lower it below
             # the paper's bond's, and the structure charts it only so far.
             lam, ratio, _ = softening_for(rounds, targets, model)
-            rel = errors["gf"] / means["gf"] if means["gf"] else 0.0
+            # One seed has no standard error: the tolerance alone then.
+            rel = errors["gf"] / means["gf"] if errors["gf"] == errors["gf"] and means["gf"] else 0.0
             top = model["softening"]["table"][-1]
             if ratio < 1.0 - args.tolerance - 2 * rel:
                 print(f"stopped: with the paper's bond (softening_ratio 0) this rock's work of "

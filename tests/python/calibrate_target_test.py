@@ -186,6 +186,44 @@ class RoundTrip(unittest.TestCase):
                          rounds)
 
 
+class WorkOfFracture(unittest.TestCase):
+    """The fracture test inside the calibrator, on the coarse discs (one seed, seconds)."""
+
+    def test_calibrate_reports_the_work_of_fracture_beside_the_strengths(self):
+        out = os.path.join(ARGS.tmp, "calibrate_fracture")
+        shutil.rmtree(out, ignore_errors=True)
+        sets = ("--set dem.specimen.radius_min_m=0.0008 --set dem.specimen.radius_max_m=0.0016 "
+                "--set dem.bonds.tensile_strength_n_per_m=2.66e4 "
+                "--set dem.bonds.shear_strength_n_per_m=2.66e4")
+        # The coarse discs' tail of bridging grains is longer than the scene's end time allows.
+        sets += " --set time.end_time_s=0.03"
+        p = rockcut("calibrate", out, "--seeds", "1", "--no-defaults", "--fracture", "coarse", sets)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        row = harness.read_csv(os.path.join(out, "calibration.csv"))[0]
+        self.assertGreater(float(row["fracture_energy_j_per_m2"]), 0.0)
+        self.assertGreater(float(row["net_tensile_strength_mpa"]), 0.0)
+        run = harness.read_csv(os.path.join(out, "calibration_runs.csv"))[0]
+        self.assertEqual(run["separated"], "True")
+        with open(os.path.join(out, "coarse", "seed1", "fracture", "summary.json")) as f:
+            summary = json.load(f)
+        self.assertEqual(float(row["fracture_energy_j_per_m2"]),
+                         float(f"{summary['fracture_energy_j_per_m2']:.4g}"))
+
+    def test_a_work_of_fracture_below_the_paper_bonds_stops_after_one_round(self):
+        # No rock of these strengths has 1 J/m^2: the paper's bond gives the least, and softening
+        # only raises it. The calibrator runs one round, says so, and exits 1.
+        out = os.path.join(ARGS.tmp, "calibrate_gf_low")
+        shutil.rmtree(out, ignore_errors=True)
+        p = rockcut("calibrate", "--target", "ucs=13.8MPa,bts=2.55MPa,gf=1J/m2", "--rock", COARSE,
+                    "--seeds", "1", "--out", out, "--set", "time.end_time_s=0.03")
+        self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
+        self.assertIn("softening bonds only raise it", p.stdout)
+        rounds = harness.read_csv(os.path.join(out, "calibration_rounds.csv"))
+        self.assertEqual(len(rounds), 1)
+        self.assertEqual(float(rounds[0]["softening_ratio"]), 0.0)
+        self.assertGreater(float(rounds[0]["gf"]), 1.0)
+
+
 class Regenerate(unittest.TestCase):
     def test_writing_over_the_starting_rock_keeps_a_usable_rock(self):
         # `--write` onto the `--rock` file (regenerating a shipped rock): the file must not name

@@ -15,18 +15,12 @@
 
 namespace rockcut::coupler {
 
-class CalibrationSummary : public RunObserver {
+class CalibrationSummary : public RowSummary {
  public:
   explicit CalibrationSummary(const rockcut::Scene& scene);
   bool active() const { return active_; }
-  /// One time-series sample of the DEM's scalars.
-  void observe(const std::vector<std::pair<std::string, double>>& scalars);
-  void write(Summary& summary) const;
-  void row(const RunClock& clock) override { observe(clock.scalars); }
-  bool finish(const RunClock&, Summary& summary, bool) override {
-    write(summary);
-    return true;
-  }
+  void observe(const std::vector<std::pair<std::string, double>>& scalars) override;
+  void write(Summary& summary) const override;
   bool ends_run() const override { return test_over(); }
   std::string end_reason(const RunClock& clock) const override;
   /// Checkpoint: the samples and the split detector.

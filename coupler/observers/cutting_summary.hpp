@@ -36,19 +36,13 @@
 
 namespace rockcut::coupler {
 
-class CuttingSummary : public RunObserver {
+class CuttingSummary : public RowSummary {
  public:
   /// `node_names`: the pressure nodes whose probes the fluid reports (may be empty).
   CuttingSummary(const rockcut::Scene& scene, std::vector<std::string> node_names);
   bool active() const { return active_; }
-  /// One time-series sample of the DEM's scalars (sorted by name).
-  void observe(const std::vector<std::pair<std::string, double>>& scalars);
-  void write(Summary& summary) const;
-  void row(const RunClock& clock) override { observe(clock.scalars); }
-  bool finish(const RunClock&, Summary& summary, bool) override {
-    write(summary);
-    return true;
-  }
+  void observe(const std::vector<std::pair<std::string, double>>& scalars) override;
+  void write(Summary& summary) const override;
   /// Checkpoint: the steady-part sums, the steady horizontal forces and the last sample.
   void save_state(state::StateArchive& a) const override;
   void load_state(const state::StateArchive& a) override;

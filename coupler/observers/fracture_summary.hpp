@@ -16,17 +16,11 @@
 
 namespace rockcut::coupler {
 
-class FractureSummary : public RunObserver {
+class FractureSummary : public RowSummary {
  public:
   explicit FractureSummary(const rockcut::Scene& scene);
-  /// One time-series sample of the DEM's scalars.
-  void observe(const std::vector<std::pair<std::string, double>>& scalars);
-  void write(Summary& summary) const;
-  void row(const RunClock& clock) override { observe(clock.scalars); }
-  bool finish(const RunClock&, Summary& summary, bool) override {
-    write(summary);
-    return true;
-  }
+  void observe(const std::vector<std::pair<std::string, double>>& scalars) override;
+  void write(Summary& summary) const override;
   bool ends_run() const override { return stop_at_separation_ && separated_; }
   std::string end_reason(const RunClock& clock) const override;
   void save_state(state::StateArchive& a) const override;

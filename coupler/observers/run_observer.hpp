@@ -7,6 +7,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "output/run_file.hpp"
@@ -44,6 +45,20 @@ class RunObserver {
   /// Checkpoints: what this observer has accumulated.
   virtual void save_state(state::StateArchive& /*a*/) const {}
   virtual void load_state(const state::StateArchive& /*a*/) {}
+};
+
+/// An observer that takes every time-series row as a sample and writes its summary fields at the
+/// end (the cutting, calibration and fracture summaries). Called per row, never per particle.
+class RowSummary : public RunObserver {
+ public:
+  /// One time-series sample of the DEM's scalars (sorted by name).
+  virtual void observe(const std::vector<std::pair<std::string, double>>& scalars) = 0;
+  virtual void write(Summary& summary) const = 0;
+  void row(const RunClock& clock) override { observe(clock.scalars); }
+  bool finish(const RunClock& /*clock*/, Summary& summary, bool /*completed*/) override {
+    write(summary);
+    return true;
+  }
 };
 
 /// The observers of one run, called in the order they were registered.

@@ -15,7 +15,6 @@ void FractureSummary::observe(const std::vector<std::pair<std::string, double>>&
   const double* work = find_value(scalars, "boundary_work_j");
   if (!pull || !elongation || !ligament || !work || separated_) return;
   ligament_m_ = *ligament;
-  elongation_m_ = *elongation;
   work_j_ = *work;
   // The peak is the largest pull so far. A dip at the start (the first samples of a specimen
   // settling) may count as the drop; the mean pull over the stretch since then stays at the
@@ -25,8 +24,7 @@ void FractureSummary::observe(const std::vector<std::pair<std::string, double>>&
     peak_elongation_m_ = *elongation;
     work_at_peak_j_ = *work;
   }
-  if (!dropped_ && *pull >= kDroppedFraction * peak_n_per_m_) return;
-  dropped_ = true;
+  if (after_drop_.empty() && *pull >= kDroppedFraction * peak_n_per_m_) return;
   after_drop_.insert(after_drop_.end(), {*elongation, *work});
   // The latest sample at least one peak elongation back.
   const double from_m = *elongation - peak_elongation_m_;
@@ -56,22 +54,19 @@ void FractureSummary::write(Summary& summary) const {
 void FractureSummary::save_state(state::StateArchive& a) const {
   a.put("fracture_summary",
         std::vector<double>{separated_ ? 1.0 : 0.0, ligament_m_, peak_n_per_m_, peak_elongation_m_,
-                            work_at_peak_j_, dropped_ ? 1.0 : 0.0, elongation_m_, work_j_,
-                            separation_elongation_m_});
+                            work_at_peak_j_, work_j_, separation_elongation_m_});
   a.put("fracture_after_drop", after_drop_, 2);
 }
 
 void FractureSummary::load_state(const state::StateArchive& a) {
-  const auto v = a.values("fracture_summary", 9);
+  const auto v = a.values("fracture_summary", 7);
   separated_ = v[0] != 0.0;
   ligament_m_ = v[1];
   peak_n_per_m_ = v[2];
   peak_elongation_m_ = v[3];
   work_at_peak_j_ = v[4];
-  dropped_ = v[5] != 0.0;
-  elongation_m_ = v[6];
-  work_j_ = v[7];
-  separation_elongation_m_ = v[8];
+  work_j_ = v[5];
+  separation_elongation_m_ = v[6];
   a.get("fracture_after_drop", after_drop_);
 }
 

@@ -38,10 +38,10 @@ class FractureSummary : public RowSummary {
   bool separated_ = false;
   double ligament_m_ = 0.0;
   double peak_n_per_m_ = 0.0, peak_elongation_m_ = 0.0, work_at_peak_j_ = 0.0;
-  bool dropped_ = false;  // the pull has fallen below kDroppedFraction of its peak
-  // (elongation, work) of the samples since it dropped, for the mean pull over the last stretch.
+  // (elongation, work) of the samples since the pull fell below kDroppedFraction of its peak
+  // (empty before), for the mean pull over the last stretch.
   std::vector<double> after_drop_;
-  double elongation_m_ = 0.0, work_j_ = 0.0;  // the latest sample
+  double work_j_ = 0.0;  // the latest sample's
   double separation_elongation_m_ = 0.0;
 };
 

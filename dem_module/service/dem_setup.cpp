@@ -103,15 +103,27 @@ Particles particles_from_scene(const rockcut::Dem& dem, std::string& report) {
       "dem: the scene gives no particles (set dem.lattice, dem.specimen or dem.packing_file)");
 }
 
+// The box around the discs' edges and the largest radius.
+struct DiscExtent {
+  double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
+};
+DiscExtent disc_extent(const Particles& p) {
+  DiscExtent e;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    e.left = std::min(e.left, p.position[2 * i] - p.radius[i]);
+    e.right = std::max(e.right, p.position[2 * i] + p.radius[i]);
+    e.top = std::max(e.top, p.position[2 * i + 1] + p.radius[i]);
+    e.bottom = std::min(e.bottom, p.position[2 * i + 1] - p.radius[i]);
+    e.r_max = std::max(e.r_max, p.radius[i]);
+  }
+  return e;
+}
+
 // Places the chisel at the specimen's upper left: tip `cutting_depth_m` below the top, a gap to
 // the left of the leftmost disc.
 ToolPlacement add_tool(const rockcut::Tool& t, const Particles& p, WallSet& walls) {
-  double left = 1e300, top = -1e300, bottom = 1e300;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    left = std::min(left, p.position[2 * i] - p.radius[i]);
-    top = std::max(top, p.position[2 * i + 1] + p.radius[i]);
-    bottom = std::min(bottom, p.position[2 * i + 1] - p.radius[i]);
-  }
+  const DiscExtent extent = disc_extent(p);
+  const double left = extent.left, top = extent.top, bottom = extent.bottom;
   if (t.cutting_depth_m() >= top - bottom) {
     throw std::invalid_argument("dem.tool.cutting_depth_m = " + num(t.cutting_depth_m()) +
                                 " puts the tool tip outside the specimen (height " +
@@ -163,22 +175,6 @@ void select_loading_arcs(double arc_deg, double r_max, const Particles& p,
     if (std::atan2(std::abs(dx), std::abs(dy)) > half_arc_rad) continue;
     (dy > 0 ? top_arc : bottom_arc).push_back(i);
   }
-}
-
-// The box around the discs' edges and the largest radius.
-struct DiscExtent {
-  double left = 1e300, right = -1e300, top = -1e300, bottom = 1e300, r_max = 0.0;
-};
-DiscExtent disc_extent(const Particles& p) {
-  DiscExtent e;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    e.left = std::min(e.left, p.position[2 * i] - p.radius[i]);
-    e.right = std::max(e.right, p.position[2 * i] + p.radius[i]);
-    e.top = std::max(e.top, p.position[2 * i + 1] + p.radius[i]);
-    e.bottom = std::min(e.bottom, p.position[2 * i + 1] - p.radius[i]);
-    e.r_max = std::max(e.r_max, p.radius[i]);
-  }
-  return e;
 }
 
 // The particles whose `keep` is set, in their order, with all their state.
@@ -445,10 +441,7 @@ DemSetup build_dem(const rockcut::Dem& dem) {
       throw std::invalid_argument("dem.fixed_base_height_m: for a dem.specimen (the block's bottom)");
     }
     const Particles& p = setup.system->particles();
-    double bottom = 1e300;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      bottom = std::min(bottom, p.position[2 * i + 1] - p.radius[i]);
-    }
+    const double bottom = disc_extent(p).bottom;
     std::vector<std::uint32_t> base;
     for (std::uint32_t i = 0; i < p.size(); ++i) {
       if (p.position[2 * i + 1] - bottom <= dem.fixed_base_height_m()) base.push_back(i);

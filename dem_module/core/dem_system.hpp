@@ -79,6 +79,11 @@ class DemSystem {
   /// Second half: total force = internal + `external` (eq. 7), v^{n+1} = v^{n+1/2} + a dt/2 (eq. 8).
   /// `external` (2 per particle, [N/m]) is held for later steps until replaced.
   void finish_step(double dt, std::span<const double> external);
+  /// finish_step(dt, external) then begin_step(next_dt), with the same bits, in one pass over the
+  /// particles where nothing acts between the two (no clamped groups, servos, membrane or
+  /// prescribed motion): the coupled step at N = 1, whose two halves follow each other. That
+  /// pass is timed as the finish phase.
+  void finish_and_begin_step(double dt, std::span<const double> external, double next_dt);
   /// Replaces the held external force and re-evaluates a^n without moving (used at t = 0).
   void set_external_force(std::span<const double> external);
   /// Holds the y velocity of `particles` at velocity_y_m_s from now on (dry scenes: an external y
@@ -147,9 +152,12 @@ class DemSystem {
   /// Prescribed motion: the velocity of the field at the mid-step time t (replaces the kicks).
   void set_prescribed_velocity(double t);
   /// total force = internal + external, then local damping (eq. 10); accumulates work terms;
-  /// with kick_dt > 0 also the second half kick (eq. 8) in the same pass.
-  void finish_forces(double kick_dt);
-  /// Copies the fluid force into the held external force.
+  /// with kick_dt > 0 also the second half kick (eq. 8) in the same pass. A non-empty `external`
+  /// (checked by check_external_force) becomes the held external force on the way.
+  void finish_forces(double kick_dt, std::span<const double> external = {});
+  /// Refuses a fluid force of the wrong size; notes whether it is anything but zero.
+  void check_external_force(std::span<const double> external);
+  /// Copies the fluid force into the held external force (and adds the membrane's load).
   void hold_external_force(std::span<const double> external);
   void rebuild_neighbours();
   /// The same, called by every thread t of a team of `threads` (inside a parallel region): the
@@ -183,6 +191,7 @@ class DemSystem {
   std::vector<WallServo> servos_;
   MembraneLoad membrane_;
   std::vector<ThreadSums> sums_;  ///< one per thread, for the pass in progress
+  std::vector<ThreadSums> next_sums_;  ///< the drift's, in finish_and_begin_step
   double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;
   double time_s_ = 0.0;

@@ -193,11 +193,16 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
     } else {
       step_op_.divergence(geo_, field, strain_rate_);
     }
-    if (from_displacement) {
-      for (double& e : strain_rate_) e /= dt_s;
-    }
+    // Per-particle loops on the model's threads, here and below: the same bits at any count.
     const double am = params_.alpha * params_.bulk_modulus_pa;
-    for (std::size_t i = 0; i < n; ++i) source_[i] = storage_source(am, strain_rate_[i]);
+    const auto count = static_cast<std::ptrdiff_t>(n);
+    double* rate = strain_rate_.data();
+    double* source = source_.data();
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      if (from_displacement) rate[i] /= dt_s;
+      source[i] = storage_source(am, rate[i]);
+    }
     phases_.lap(kPasses);
     advance(dt_s);
   } else {
@@ -207,17 +212,24 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
       if (boundary_[i] == Boundary::drained) pressure_[i] = params_.p_hydro_pa;
     }
   }
-  cavitated_ = 0;
+  const auto count = static_cast<std::ptrdiff_t>(n);
+  const double* p = pressure_.data();
+  std::size_t cavitated = 0;
   if (params_.cavitation) {
-    for (double p : pressure_) cavitated_ += at_vapour_pressure(p, params_.p_min_pa);
+    const double p_min = params_.p_min_pa;
+#pragma omp parallel for schedule(static) reduction(+ : cavitated)
+    for (std::ptrdiff_t i = 0; i < count; ++i) cavitated += at_vapour_pressure(p[i], p_min);
   }
+  cavitated_ = cavitated;
   phases_.lap(kAdvance);
 
   if (params_.force_form == ForceForm::adjoint) {
     // The excess pressure acts on share_ (update_share): g_i = A_i (p_i - p_hydro) [N/m].
-    for (std::size_t i = 0; i < n; ++i) {
-      area_excess_[i] = share_[i] * (pressure_[i] - params_.p_hydro_pa);
-    }
+    const double* share = share_.data();
+    double* g = area_excess_.data();
+    const double p_hydro = params_.p_hydro_pa;
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < count; ++i) g[i] = share[i] * (p[i] - p_hydro);
     step_op_.adjoint_force(geo_, area_excess_, force);
     phases_.lap(kForce);
     return;

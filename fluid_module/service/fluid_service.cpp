@@ -181,8 +181,16 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
 
 void FluidService::guard_not_finite(double time_s, std::span<const double> position,
                                     wire::FluidResult& result) const {
-  // The runtime NaN guard (DESIGN section 5) for any model: the forces it hands the DEM.
-  const auto bad = std::find_if(force_.begin(), force_.end(), [](double f) { return !std::isfinite(f); });
+  // The runtime NaN guard (DESIGN section 5) for any model: the forces it hands the DEM. Any
+  // non-finite value is first looked for on the model's threads (0 * inf and 0 * NaN are NaN);
+  // the rare search for the first one is serial.
+  const double* f = force_.data();
+  const auto count = static_cast<std::ptrdiff_t>(force_.size());
+  double zero_unless_bad = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : zero_unless_bad)
+  for (std::ptrdiff_t k = 0; k < count; ++k) zero_unless_bad += 0.0 * f[k];
+  if (zero_unless_bad == 0.0) return;
+  const auto bad = std::find_if(force_.begin(), force_.end(), [](double v) { return !std::isfinite(v); });
   if (bad == force_.end()) return;
   const std::int64_t i = (bad - force_.begin()) / 2;
   wire::GuardTrip* g = result.mutable_guard();

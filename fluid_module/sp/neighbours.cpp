@@ -19,13 +19,14 @@ bool NeighbourList::update(std::span<const double> position) {
     build(position);
     return true;
   }
-  const std::size_t m = position.size();
+  const auto n = static_cast<std::ptrdiff_t>(position.size() / 2);
   const double* x = position.data();
   const double* x0 = position_at_build_.data();
   const double limit2 = half_skin_m_ * half_skin_m_;
-  double max2 = 0.0;
-  for (std::size_t k = 0; k < m; k += 2) {
-    const double dx = x[k] - x0[k], dy = x[k + 1] - x0[k + 1];
+  double max2 = 0.0;  // a maximum: the same at any thread count
+#pragma omp parallel for schedule(static) reduction(max : max2)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const double dx = x[2 * i] - x0[2 * i], dy = x[2 * i + 1] - x0[2 * i + 1];
     max2 = std::max(max2, dx * dx + dy * dy);
   }
   // With no skin any motion at all invalidates the lists.

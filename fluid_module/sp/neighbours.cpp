@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <omp.h>
+
 namespace rockcut::fluid::sp {
 
 NeighbourList::NeighbourList(double support_m, double skin)
@@ -120,26 +122,39 @@ void NeighbourList::build(std::span<const double> position) {
   for (std::size_t c = 0; c + 1 < cell_start_.size(); ++c) {
     max_cell = std::max(max_cell, cell_start_[c + 1] - cell_start_[c]);
   }
-  scratch_.resize(static_cast<std::size_t>(9 * max_cell + 1));
-  int* tmp = scratch_.data();
+  // One candidate buffer per thread of the model's team.
+  const auto stride = static_cast<std::size_t>(9 * max_cell + 1);
+  scratch_.resize(stride * static_cast<std::size_t>(omp_get_max_threads()));
 
   // Pass 1: row lengths; pass 2: rows. Particles are visited cell by cell, so the candidates of
   // consecutive particles are the same few cells, hot in cache, whatever the particle numbering.
-  for (int k = 0; k < static_cast<int>(n); ++k) {
-    const int i = cell_particles_[k];
-    offsets_[i + 1] = candidates(i, tmp) - 1;  // without i itself
-  }
-  for (std::size_t i = 0; i < n; ++i) offsets_[i + 1] += offsets_[i];
-  neighbours_.resize(static_cast<std::size_t>(offsets_[n]));
-  for (int k = 0; k < static_cast<int>(n); ++k) {
-    const int i = cell_particles_[k];
-    const int m = candidates(i, tmp);
-    int* row = neighbours_.data() + offsets_[i];
-    int r = 0;
-    for (int q = 0; q < m; ++q) {
-      if (tmp[q] != i) row[r++] = tmp[q];
+  // Each row is written by one thread at offsets fixed by pass 1 and sorted: the same list at any
+  // thread count.
+  const int count = static_cast<int>(n);
+#pragma omp parallel
+  {
+    int* tmp = scratch_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
+#pragma omp for schedule(static)
+    for (int k = 0; k < count; ++k) {
+      const int i = cell_particles_[k];
+      offsets_[i + 1] = candidates(i, tmp) - 1;  // without i itself
     }
-    std::sort(row, row + r);
+#pragma omp single
+    {
+      for (std::size_t i = 0; i < n; ++i) offsets_[i + 1] += offsets_[i];
+      neighbours_.resize(static_cast<std::size_t>(offsets_[n]));
+    }  // implied barrier: the offsets and the list's size are ready
+#pragma omp for schedule(static)
+    for (int k = 0; k < count; ++k) {
+      const int i = cell_particles_[k];
+      const int m = candidates(i, tmp);
+      int* row = neighbours_.data() + offsets_[i];
+      int r = 0;
+      for (int q = 0; q < m; ++q) {
+        if (tmp[q] != i) row[r++] = tmp[q];
+      }
+      std::sort(row, row + r);
+    }
   }
 }
 

@@ -54,7 +54,7 @@ class NeighbourList {
   int nx_ = 0, ny_ = 0;
   std::vector<int> cell_of_, cell_start_, cell_particles_, count_;
   std::vector<double> cell_xy_;  // positions in cell order
-  std::vector<int> scratch_;     // candidates of one particle
+  std::vector<int> scratch_;     // candidates of one particle, one buffer per thread
 };
 
 }  // namespace rockcut::fluid::sp

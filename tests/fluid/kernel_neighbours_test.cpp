@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <omp.h>
+
 #include "fluid/sp_test_support.hpp"
 #include "sp/kernel.hpp"
 #include "sp/neighbours.hpp"
@@ -49,9 +51,13 @@ TEST(Kernel, FIsTheDerivativeOverR) {
 }
 
 TEST(NeighbourList, MatchesBruteForceSortedAndSymmetric) {
+  // On one thread and on three (the rows are shared out, each written at its counted offset).
+  for (int threads : {1, 3}) {
+  omp_set_num_threads(threads);
   const Particles p = random_packing();
   sp::NeighbourList list(0.0015, 0.1);
   list.build(p.position);
+  omp_set_num_threads(1);
   const double rc = 0.0015 * 1.1;
   std::size_t pairs = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -64,8 +70,9 @@ TEST(NeighbourList, MatchesBruteForceSortedAndSymmetric) {
     ASSERT_EQ(row, expected) << "particle " << i;  // brute force is in index order: sorted
     pairs += expected.size();
   }
-  EXPECT_EQ(list.pairs(), pairs);
+  EXPECT_EQ(list.pairs(), pairs) << threads << " threads";
   EXPECT_EQ(pairs % 2, 0u);
+  }
 }
 
 TEST(NeighbourList, RebuildsOnlyWhenAParticleMovedMoreThanHalfTheSkin) {

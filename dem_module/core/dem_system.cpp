@@ -409,6 +409,21 @@ std::size_t DemSystem::add_clamped_group(std::vector<std::uint32_t> particles,
   g.particles = std::move(particles);
   g.velocity_y_m_s = velocity_y_m_s;
   g.fixed = fixed;
+  // Per particle, what reset_clamped_velocities leaves: the last group's v_y, and rest in x and
+  // spin if any group holds it fixed (the resets assign constants, so this is their result).
+  for (std::uint32_t i : g.particles) {
+    if (i >= particles_.size()) {
+      throw std::invalid_argument("clamped group: no particle " + std::to_string(i));
+    }
+  }
+  if (clamp_kind_.empty()) {
+    clamp_kind_.assign(particles_.size(), kFree);
+    clamp_velocity_y_.assign(particles_.size(), 0.0);
+  }
+  for (std::uint32_t i : g.particles) {
+    clamp_kind_[i] = (g.fixed || clamp_kind_[i] == kFixed) ? kFixed : kClamped;
+    clamp_velocity_y_[i] = velocity_y_m_s;
+  }
   clamped_.push_back(std::move(g));
   // The present forces become the first reaction; no step has been taken with it, so no work.
   const double boundary_work = ledger_.boundary_work_j;
@@ -591,8 +606,7 @@ void DemSystem::finish_step(double dt, std::span<const double> external) {
 
 void DemSystem::finish_and_begin_step(double dt, std::span<const double> external,
                                       double next_dt) {
-  if (!clamped_.empty() || !servos_.empty() || !membrane_.particles.empty() ||
-      settings_.prescribed_motion) {
+  if (!servos_.empty() || !membrane_.particles.empty() || settings_.prescribed_motion) {
     finish_step(dt, external);
     begin_step(next_dt);
     return;
@@ -608,6 +622,14 @@ void DemSystem::finish_and_begin_step(double dt, std::span<const double> externa
   next_sums_.assign(static_cast<std::size_t>(threads), ThreadSums{});
   const double finish_h = 0.5 * dt_last_;
   double* held = particles_.external_force.data();
+  // A clamped particle's velocity is reset between the halves (reset_clamped_velocities), here
+  // from its per-particle summary of the groups.
+  const std::uint8_t* clamp = clamp_kind_.empty() ? nullptr : clamp_kind_.data();
+  const double* clamp_vy = clamp_velocity_y_.data();
+  double* v = particles_.velocity.data();
+  double* w = particles_.angular_velocity.data();
+  double* f = particles_.force.data();
+  double* q = particles_.torque.data();
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     const int t = threads > 1 ? thread_id() : 0;
@@ -616,11 +638,28 @@ void DemSystem::finish_and_begin_step(double dt, std::span<const double> externa
                                     finish_h);
     DriftPass drift = drift_pass(particles_, settings_, damping_force_, has_body_forces_, next_dt,
                                  /*kick=*/true, /*reset_forces=*/false);
-    for (std::size_t i = p0; i < p1; ++i) {
-      held[2 * i] = external[2 * i];
-      held[2 * i + 1] = external[2 * i + 1];
-      finish(i);
-      drift(i);
+    // Block by block, each pass a loop of its own over a block that stays in the first-level
+    // cache: one particle's finish and drift in one loop body spilled their sums to the stack.
+    // Each pass still sums its particles in index order, so the bits are the two halves'.
+    constexpr std::size_t kBlock = 256;
+    for (std::size_t b0 = p0; b0 < p1; b0 += kBlock) {
+      const std::size_t b1 = std::min(p1, b0 + kBlock);
+      std::copy(external.data() + 2 * b0, external.data() + 2 * b1, held + 2 * b0);
+      for (std::size_t i = b0; i < b1; ++i) finish(i);
+      if (clamp) {
+        for (std::size_t i = b0; i < b1; ++i) {
+          if (clamp[i] == kFree) continue;
+          v[2 * i + 1] = clamp_vy[i];
+          f[2 * i + 1] = 0.0;
+          if (clamp[i] == kFixed) {
+            v[2 * i] = 0.0;
+            w[i] = 0.0;
+            f[2 * i] = 0.0;
+            q[i] = 0.0;
+          }
+        }
+      }
+      for (std::size_t i = b0; i < b1; ++i) drift(i);
     }
     finish.add_to(sums_[static_cast<std::size_t>(t)]);
     drift.add_to(next_sums_[static_cast<std::size_t>(t)]);

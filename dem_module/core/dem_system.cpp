@@ -145,33 +145,25 @@ void DemSystem::start_sums(int threads) {
   for (ThreadSums& s : sums_) s = ThreadSums{};
 }
 
-namespace {
-
-// The per-particle work of the two halves of a step, as objects of one pass each so that a range
-// can run either alone or both particle by particle (finish_and_begin_step) with the same bits:
-// each keeps its own sums, added to ThreadSums in the same order either way. Local objects of
-// raw pointers and constants, inlined into the loops, so that the compiler keeps them in
-// registers.
-
-// Eqs. 6 (if kick) and 5; with reset_forces the force then restarts from gravity. Verlet moves x
-// by v^{n+1/2} dt under the mean of F^n and F^{n+1}: each force's work over the drift is the
-// trapezoid 1/2 (F^n + F^{n+1}) . dx. The F^n halves are added here, the F^{n+1} halves by the
-// finish pass.
-struct DriftPass {
-  double* x;
-  double* v;
-  double* w;
-  double* f;
-  double* q;
-  const double* inv_i;
-  const double* fe;
-  const double* inv_m;
-  const double* fd;  // null without local damping
-  double dt, h, gx, gy;
-  bool kick, reset_forces, body;
+void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool kick,
+                            bool reset_forces, ThreadSums& sums) {
+  double* x = particles_.position.data();
+  double* v = particles_.velocity.data();
+  double* w = particles_.angular_velocity.data();
+  double* f = particles_.force.data();
+  double* q = particles_.torque.data();
+  const double* inv_i = particles_.inv_inertia.data();
+  const double h = 0.5 * dt;
+  const double* fe = particles_.external_force.data();
+  const double* inv_m = particles_.inv_mass.data();
+  const double* fd = damping_force_.empty() ? nullptr : damping_force_.data();
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  const bool body = has_body_forces_;
   double vmax2 = 0.0, work = 0.0, gravity = 0.0, damping = 0.0;
-
-  [[gnu::always_inline]] void operator()(std::size_t i) {
+  // Verlet moves x by v^{n+1/2} dt under the mean of F^n and F^{n+1}: each force's work over the
+  // drift is the trapezoid 1/2 (F^n + F^{n+1}) . dx. The F^n halves are added here, the F^{n+1}
+  // halves in finish_range().
+  for (std::size_t i = begin; i < end; ++i) {
     if (kick) {  // eq. 6, fused with the drift: one pass over the particles
       v[2 * i] = half_kick(v[2 * i], h, f[2 * i], inv_m[i]);
       v[2 * i + 1] = half_kick(v[2 * i + 1], h, f[2 * i + 1], inv_m[i]);
@@ -192,90 +184,10 @@ struct DriftPass {
       q[i] = 0.0;
     }
   }
-  void add_to(ThreadSums& sums) const {
-    sums.vmax2 = std::max(sums.vmax2, vmax2);
-    sums.external_work_j += work;
-    sums.gravity_work_j += gravity;
-    sums.damping_j += damping;
-  }
-};
-
-// Total force = internal + external (eq. 7), local damping (eq. 10), and with kick_dt > 0 the
-// second half kick (eq. 8); the F^{n+1} halves of the work trapezoids.
-struct FinishPass {
-  double* f;
-  double* q;
-  const double* fe;
-  double* v;
-  double* w;
-  const double* inv_m;
-  const double* inv_i;
-  double* fd;
-  double kick, kick_dt, gx, gy, alpha, h;
-  bool body;
-  double damping = 0.0, work = 0.0, gravity = 0.0;
-
-  [[gnu::always_inline]] void operator()(std::size_t i) {
-    double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
-    const double vx = v[2 * i], vy = v[2 * i + 1];
-    if (body) {
-      work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * h;
-      gravity += (gx * vx + gy * vy) / inv_m[i] * h;
-    }
-    if (alpha > 0) {
-      // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
-      const double dx = local_damping_force(alpha, fx, vx);
-      const double dy = local_damping_force(alpha, fy, vy);
-      const double dq = local_damping_force(alpha, tq, w[i]);
-      damping -= (dx * vx + dy * vy + dq * w[i]) * h;
-      fd[3 * i] = dx;
-      fd[3 * i + 1] = dy;
-      fd[3 * i + 2] = dq;
-      fx += dx;
-      fy += dy;
-      tq += dq;
-    }
-    f[2 * i] = fx;
-    f[2 * i + 1] = fy;
-    q[i] = tq;
-    if (kick_dt > 0) {  // eq. 8, fused: v^{n+1} = v^{n+1/2} + a^{n+1} dt/2
-      v[2 * i] = half_kick(v[2 * i], kick, fx, inv_m[i]);
-      v[2 * i + 1] = half_kick(v[2 * i + 1], kick, fy, inv_m[i]);
-      w[i] = half_kick(w[i], kick, tq, inv_i[i]);
-    }
-  }
-  void add_to(ThreadSums& sums) const {
-    sums.damping_j += damping;
-    sums.external_work_j += work;
-    sums.gravity_work_j += gravity;
-  }
-};
-
-DriftPass drift_pass(Particles& p, const DemSettings& settings, const std::vector<double>& fd,
-                     bool body, double dt, bool kick, bool reset_forces) {
-  return {p.position.data(), p.velocity.data(), p.angular_velocity.data(), p.force.data(),
-          p.torque.data(), p.inv_inertia.data(), p.external_force.data(), p.inv_mass.data(),
-          fd.empty() ? nullptr : fd.data(), dt, 0.5 * dt, settings.gravity_x_m_s2,
-          settings.gravity_y_m_s2, kick, reset_forces, body};
-}
-
-// h: half the step that the drift's trapezoid halves belong to (the last begun step's).
-FinishPass finish_pass(Particles& p, const DemSettings& settings, std::vector<double>& fd,
-                       bool body, double kick_dt, double h) {
-  return {p.force.data(), p.torque.data(), p.external_force.data(), p.velocity.data(),
-          p.angular_velocity.data(), p.inv_mass.data(), p.inv_inertia.data(), fd.data(),
-          0.5 * kick_dt, kick_dt, settings.gravity_x_m_s2, settings.gravity_y_m_s2,
-          settings.local_damping, h, body};
-}
-
-}  // namespace
-
-void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool kick,
-                            bool reset_forces, ThreadSums& sums) {
-  DriftPass pass = drift_pass(particles_, settings_, damping_force_, has_body_forces_, dt, kick,
-                              reset_forces);
-  for (std::size_t i = begin; i < end; ++i) pass(i);
-  pass.add_to(sums);
+  sums.vmax2 = std::max(sums.vmax2, vmax2);
+  sums.external_work_j += work;
+  sums.gravity_work_j += gravity;
+  sums.damping_j += damping;
 }
 
 void DemSystem::reset_forces_range(std::size_t begin, std::size_t end) {
@@ -320,11 +232,52 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
 
 void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
                              ThreadSums& sums) {
-  // 0.5 dt_last_: the F^{n+1} half of the trapezoid, see DriftPass.
-  FinishPass pass = finish_pass(particles_, settings_, damping_force_, has_body_forces_, kick_dt,
-                                0.5 * dt_last_);
-  for (std::size_t i = begin; i < end; ++i) pass(i);
-  pass.add_to(sums);
+  double* f = particles_.force.data();
+  double* q = particles_.torque.data();
+  const double* fe = particles_.external_force.data();
+  double* v = particles_.velocity.data();
+  double* w = particles_.angular_velocity.data();
+  const double* inv_m = particles_.inv_mass.data();
+  const double* inv_i = particles_.inv_inertia.data();
+  const double kick = 0.5 * kick_dt;
+  const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  const double alpha = settings_.local_damping;
+  double* fd = damping_force_.data();
+  const double h = 0.5 * dt_last_;  // the F^{n+1} half of the trapezoid, see drift_range()
+  const bool body = has_body_forces_;
+  double damping = 0.0, work = 0.0, gravity = 0.0;
+  for (std::size_t i = begin; i < end; ++i) {
+    double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
+    const double vx = v[2 * i], vy = v[2 * i + 1];
+    if (body) {
+      work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * h;
+      gravity += (gx * vx + gy * vy) / inv_m[i] * h;
+    }
+    if (alpha > 0) {
+      // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
+      const double dx = local_damping_force(alpha, fx, vx);
+      const double dy = local_damping_force(alpha, fy, vy);
+      const double dq = local_damping_force(alpha, tq, w[i]);
+      damping -= (dx * vx + dy * vy + dq * w[i]) * h;
+      fd[3 * i] = dx;
+      fd[3 * i + 1] = dy;
+      fd[3 * i + 2] = dq;
+      fx += dx;
+      fy += dy;
+      tq += dq;
+    }
+    f[2 * i] = fx;
+    f[2 * i + 1] = fy;
+    q[i] = tq;
+    if (kick_dt > 0) {  // eq. 8, fused: v^{n+1} = v^{n+1/2} + a^{n+1} dt/2
+      v[2 * i] = half_kick(v[2 * i], kick, fx, inv_m[i]);
+      v[2 * i + 1] = half_kick(v[2 * i + 1], kick, fy, inv_m[i]);
+      w[i] = half_kick(w[i], kick, tq, inv_i[i]);
+    }
+  }
+  sums.damping_j += damping;
+  sums.external_work_j += work;
+  sums.gravity_work_j += gravity;
 }
 
 void DemSystem::kick_drift(double dt, bool kick) {
@@ -409,21 +362,6 @@ std::size_t DemSystem::add_clamped_group(std::vector<std::uint32_t> particles,
   g.particles = std::move(particles);
   g.velocity_y_m_s = velocity_y_m_s;
   g.fixed = fixed;
-  // Per particle, what reset_clamped_velocities leaves: the last group's v_y, and rest in x and
-  // spin if any group holds it fixed (the resets assign constants, so this is their result).
-  for (std::uint32_t i : g.particles) {
-    if (i >= particles_.size()) {
-      throw std::invalid_argument("clamped group: no particle " + std::to_string(i));
-    }
-  }
-  if (clamp_kind_.empty()) {
-    clamp_kind_.assign(particles_.size(), kFree);
-    clamp_velocity_y_.assign(particles_.size(), 0.0);
-  }
-  for (std::uint32_t i : g.particles) {
-    clamp_kind_[i] = (g.fixed || clamp_kind_[i] == kFixed) ? kFixed : kClamped;
-    clamp_velocity_y_[i] = velocity_y_m_s;
-  }
   clamped_.push_back(std::move(g));
   // The present forces become the first reaction; no step has been taken with it, so no work.
   const double boundary_work = ledger_.boundary_work_j;
@@ -482,8 +420,8 @@ void DemSystem::finish_forces(double kick_dt, std::span<const double> external) 
   {
     const int t = threads > 1 ? thread_id() : 0;
     const auto [p0, p1] = share(n, t, threads);
-    // The held external force, copied by each thread for its own particles just before it reads
-    // them (one pass instead of a serial copy of the whole array first).
+    // The held external force, copied by each thread for its own particles before it reads them
+    // (instead of a serial copy of the whole array first).
     if (!external.empty()) std::copy(external.data() + 2 * p0, external.data() + 2 * p1, held + 2 * p0);
     finish_range(p0, p1, kick_dt, sums_[t]);
   }
@@ -602,80 +540,6 @@ void DemSystem::finish_step(double dt, std::span<const double> external) {
   }
   in_split_step_ = false;
   if (!servos_.empty()) steer_servo_walls();
-}
-
-void DemSystem::finish_and_begin_step(double dt, std::span<const double> external,
-                                      double next_dt) {
-  if (!servos_.empty() || !membrane_.particles.empty() || settings_.prescribed_motion) {
-    finish_step(dt, external);
-    begin_step(next_dt);
-    return;
-  }
-  if (!in_split_step_) throw std::logic_error("finish_step without begin_step");
-  check_external_force(external);
-  if (!internal_forces_current_) compute_internal_forces();
-  const std::size_t n = particles_.size();
-  const int threads = settings_.threads;
-  if (settings_.local_damping > 0) damping_force_.resize(3 * n);
-  phases_.start();
-  start_sums(threads);
-  next_sums_.assign(static_cast<std::size_t>(threads), ThreadSums{});
-  const double finish_h = 0.5 * dt_last_;
-  double* held = particles_.external_force.data();
-  // A clamped particle's velocity is reset between the halves (reset_clamped_velocities), here
-  // from its per-particle summary of the groups.
-  const std::uint8_t* clamp = clamp_kind_.empty() ? nullptr : clamp_kind_.data();
-  const double* clamp_vy = clamp_velocity_y_.data();
-  double* v = particles_.velocity.data();
-  double* w = particles_.angular_velocity.data();
-  double* f = particles_.force.data();
-  double* q = particles_.torque.data();
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const int t = threads > 1 ? thread_id() : 0;
-    const auto [p0, p1] = share(n, t, threads);
-    FinishPass finish = finish_pass(particles_, settings_, damping_force_, has_body_forces_, dt,
-                                    finish_h);
-    DriftPass drift = drift_pass(particles_, settings_, damping_force_, has_body_forces_, next_dt,
-                                 /*kick=*/true, /*reset_forces=*/false);
-    // Block by block, each pass a loop of its own over a block that stays in the first-level
-    // cache: one particle's finish and drift in one loop body spilled their sums to the stack.
-    // Each pass still sums its particles in index order, so the bits are the two halves'.
-    constexpr std::size_t kBlock = 256;
-    for (std::size_t b0 = p0; b0 < p1; b0 += kBlock) {
-      const std::size_t b1 = std::min(p1, b0 + kBlock);
-      std::copy(external.data() + 2 * b0, external.data() + 2 * b1, held + 2 * b0);
-      for (std::size_t i = b0; i < b1; ++i) finish(i);
-      if (clamp) {
-        for (std::size_t i = b0; i < b1; ++i) {
-          if (clamp[i] == kFree) continue;
-          v[2 * i + 1] = clamp_vy[i];
-          f[2 * i + 1] = 0.0;
-          if (clamp[i] == kFixed) {
-            v[2 * i] = 0.0;
-            w[i] = 0.0;
-            f[2 * i] = 0.0;
-            q[i] = 0.0;
-          }
-        }
-      }
-      for (std::size_t i = b0; i < b1; ++i) drift(i);
-    }
-    finish.add_to(sums_[static_cast<std::size_t>(t)]);
-    drift.add_to(next_sums_[static_cast<std::size_t>(t)]);
-  }
-  // Booked as the two halves book them: the finish's sums, then the drift's.
-  book(total_sums());
-  sums_.swap(next_sums_);
-  const ThreadSums s = total_sums();
-  book(s);
-  dt_last_ = next_dt;
-  max_drift_m_ += std::sqrt(s.vmax2) * next_dt;
-  walls_.move(next_dt);
-  phases_.lap(kFinish);
-  time_s_ += next_dt;
-  ++steps_;
-  internal_forces_current_ = false;
 }
 
 void DemSystem::check_external_force(std::span<const double> external) {

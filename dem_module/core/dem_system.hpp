@@ -79,11 +79,6 @@ class DemSystem {
   /// Second half: total force = internal + `external` (eq. 7), v^{n+1} = v^{n+1/2} + a dt/2 (eq. 8).
   /// `external` (2 per particle, [N/m]) is held for later steps until replaced.
   void finish_step(double dt, std::span<const double> external);
-  /// finish_step(dt, external) then begin_step(next_dt), with the same bits, in one pass over the
-  /// particles (the clamped groups' resets inside it) unless something acts between the two
-  /// (servos, a membrane, prescribed motion): the coupled step at N = 1, whose two halves follow
-  /// each other. That pass is timed as the finish phase.
-  void finish_and_begin_step(double dt, std::span<const double> external, double next_dt);
   /// Replaces the held external force and re-evaluates a^n without moving (used at t = 0).
   void set_external_force(std::span<const double> external);
   /// Holds the y velocity of `particles` at velocity_y_m_s from now on (dry scenes: an external y
@@ -191,11 +186,6 @@ class DemSystem {
   std::vector<WallServo> servos_;
   MembraneLoad membrane_;
   std::vector<ThreadSums> sums_;  ///< one per thread, for the pass in progress
-  std::vector<ThreadSums> next_sums_;  ///< the drift's, in finish_and_begin_step
-  // What the clamped groups hold each particle to (finish_and_begin_step): empty without groups.
-  enum ClampKind : std::uint8_t { kFree, kClamped, kFixed };
-  std::vector<std::uint8_t> clamp_kind_;
-  std::vector<double> clamp_velocity_y_;  ///< the last group's v_y [m/s], where clamped
   double max_drift_m_ = 0.0;  ///< bound on any disc's displacement since the last rebuild
   double dt_last_ = 0.0;
   double time_s_ = 0.0;

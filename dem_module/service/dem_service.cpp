@@ -181,31 +181,21 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
     throw std::runtime_error("dem_module: stopped by the " + stopped_by_ +
                              " guard; only frames can be asked for");
   }
+  if (advance.apply_forces_first()) {
+    // The held ApplyForces of the last exchange (no output was due at its step). The guards run
+    // on the completed step at the same cadence as inside a long Advance.
+    hold_forces(request);
+    if (s.step_count() >= guard_checked_step_ + kGuardEverySteps) {
+      guard_checked_step_ = s.step_count();
+      if (check_guards(s, setup_.guards, setup_.initial_energy_j, s.kinetic_energy()).tripped()) {
+        return report(reply);
+      }
+    }
+  }
   const double dt = advance.dt_s();
   if (advance.steps() > 0 && !(dt > 0.0)) throw std::invalid_argument("Advance with dt_s <= 0");
   const unsigned full_steps = advance.split_last() && advance.steps() > 0 ? advance.steps() - 1
                                                                             : advance.steps();
-  // N = 1: the held forces finish the last step and the next one begins at once, one pass over
-  // the particles for both (DemSystem::finish_and_begin_step), unless the guards are due between.
-  bool begun = false;
-  if (advance.apply_forces_first()) {
-    const bool guards_due = s.step_count() >= guard_checked_step_ + kGuardEverySteps;
-    if (!guards_due && full_steps == 0 && advance.steps() > 0 && s.in_split_step()) {
-      s.finish_and_begin_step(split_dt_s_,
-                              request.array(wire::field::kForce, 2, s.particles().size()), dt);
-      begun = true;
-    } else {
-      // The held ApplyForces of the last exchange (no output was due at its step). The guards
-      // run on the completed step at the same cadence as inside a long Advance.
-      hold_forces(request);
-      if (guards_due) {
-        guard_checked_step_ = s.step_count();
-        if (check_guards(s, setup_.guards, setup_.initial_energy_j, s.kinetic_energy()).tripped()) {
-          return report(reply);
-        }
-      }
-    }
-  }
   bool tripped = false;
   for (unsigned k = 0; k < full_steps; ++k) {
     s.step(dt);
@@ -221,7 +211,7 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
   // kinematics of fewer steps than asked (which the coupler took for a module's failure).
   if (tripped || !advance.split_last()) return report(reply);
 
-  if (advance.steps() > 0 && !begun) s.begin_step(dt);
+  if (advance.steps() > 0) s.begin_step(dt);
   // Without overlap (Coupling.overlap) the forces at x^{n+N} come now; after_reply then has
   // nothing to do.
   if (advance.steps() > 0 && advance.forces_before_reply()) s.compute_internal_forces();

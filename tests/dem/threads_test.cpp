@@ -6,7 +6,6 @@
 #include <cstring>
 #include <vector>
 #include <random>
-#include <span>
 
 #include "core/dem_system.hpp"
 #include "dem/dem_test_support.hpp"
@@ -118,69 +117,6 @@ TEST(Threads, OneRegionStepEqualsTheSplitStepBitForBit) {
                 1e-12 * std::abs(split.ledger().boundary_work_j));
     EXPECT_NEAR(full.ledger().viscous_damping_j, split.ledger().viscous_damping_j,
                 1e-12 * std::abs(split.ledger().viscous_damping_j));
-  }
-}
-
-TEST(Threads, FusedFinishAndBeginEqualsTheTwoHalvesBitForBit) {
-  // At N = 1 the DEM module finishes a step with the fluid's force and begins the next in one
-  // pass over the particles (finish_and_begin_step). Each particle's arithmetic and each sum's
-  // order of additions are the two halves', so the motion and the ledger must agree to the bit,
-  // under a fluid force that changes every step (its work and the damping's are booked) and
-  // through bond breaks and neighbour rebuilds.
-  // The clamped groups' resets happen between the halves: the bottom rows held fixed (the held
-  // base of a cut) and a band above them, overlapping it, held at a y velocity.
-  for (const Laws& laws : {kLocal, kDashpotsAndRolling})
-  for (bool clamped : {false, true})
-  for (int threads : {1, 2}) {
-    DemSystem halves = loaded_block(threads, laws), fused = loaded_block(threads, laws);
-    if (clamped) {
-      std::vector<std::uint32_t> base, band;
-      for (std::uint32_t i = 0; i < halves.particles().size(); ++i) {
-        const double y = halves.particles().position[2 * i + 1];
-        if (y < 2.5e-3) base.push_back(i);
-        if (y > 0.5e-3 && y < 5e-3) band.push_back(i);
-      }
-      ASSERT_FALSE(base.empty());
-      for (DemSystem* s : {&halves, &fused}) {
-        s->add_clamped_group(base, 0.0, /*fixed=*/true);
-        s->add_clamped_group(band, 0.01);
-      }
-    }
-    std::vector<double> fluid(halves.particles().position.size());
-    const auto fluid_at = [&fluid](int k) {
-      for (std::size_t i = 0; i < fluid.size(); ++i) {
-        fluid[i] = 1e-3 * std::sin(0.37 * static_cast<double>(i) + 0.01 * k);
-      }
-      return std::span<const double>(fluid);
-    };
-    halves.begin_step(2e-8);
-    fused.begin_step(2e-8);
-    for (int k = 0; k < 1500; ++k) {
-      halves.compute_internal_forces();
-      halves.finish_step(2e-8, fluid_at(k));
-      halves.begin_step(2e-8);
-      fused.compute_internal_forces();
-      fused.finish_and_begin_step(2e-8, fluid_at(k), 2e-8);
-    }
-    ASSERT_GT(halves.breaks().size(), 0u) << "the test should exercise bond breaks";
-    ASSERT_GT(halves.neighbour_rebuilds(), 1u) << "the test should exercise a rebuild";
-    ASSERT_NE(halves.ledger().external_work_j, 0.0) << "the fluid force should do work";
-    EXPECT_EQ(halves.step_count(), fused.step_count());
-    EXPECT_EQ(halves.time_s(), fused.time_s());
-    EXPECT_EQ(halves.breaks().size(), fused.breaks().size());
-    const auto& a = halves.particles();
-    const auto& b = fused.particles();
-    EXPECT_EQ(std::memcmp(a.position.data(), b.position.data(), a.position.size() * 8), 0)
-        << threads << " threads";
-    EXPECT_EQ(std::memcmp(a.velocity.data(), b.velocity.data(), a.velocity.size() * 8), 0)
-        << threads << " threads, clamped " << clamped;
-    EXPECT_EQ(std::memcmp(a.external_force.data(), b.external_force.data(),
-                          a.external_force.size() * 8), 0);
-    EXPECT_EQ(halves.ledger().external_work_j, fused.ledger().external_work_j);
-    EXPECT_EQ(halves.ledger().damping_j, fused.ledger().damping_j);
-    EXPECT_EQ(halves.ledger().viscous_damping_j, fused.ledger().viscous_damping_j);
-    EXPECT_EQ(halves.ledger().boundary_work_j, fused.ledger().boundary_work_j);
-    EXPECT_EQ(halves.kinetic_energy(), fused.kinetic_energy());
   }
 }
 

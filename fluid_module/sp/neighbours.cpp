@@ -139,11 +139,13 @@ void NeighbourList::build(std::span<const double> position) {
       const int i = cell_particles_[k];
       offsets_[i + 1] = candidates(i, tmp) - 1;  // without i itself
     }
-#pragma omp single
-    {
-      for (std::size_t i = 0; i < n; ++i) offsets_[i + 1] += offsets_[i];
-      neighbours_.resize(static_cast<std::size_t>(offsets_[n]));
-    }  // implied barrier: the offsets and the list's size are ready
+  }
+  // Outside the parallel regions: an allocation that fails throws to the caller.
+  for (std::size_t i = 0; i < n; ++i) offsets_[i + 1] += offsets_[i];
+  neighbours_.resize(static_cast<std::size_t>(offsets_[n]));
+#pragma omp parallel
+  {
+    int* tmp = scratch_.data() + stride * static_cast<std::size_t>(omp_get_thread_num());
 #pragma omp for schedule(static)
     for (int k = 0; k < count; ++k) {
       const int i = cell_particles_[k];

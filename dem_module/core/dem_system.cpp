@@ -409,20 +409,16 @@ void DemSystem::reset_clamped_velocities() {
   }
 }
 
-void DemSystem::finish_forces(double kick_dt, std::span<const double> external) {
+void DemSystem::finish_forces(double kick_dt) {
   const std::size_t n = particles_.size();
   const int threads = settings_.threads;
   if (settings_.local_damping > 0) damping_force_.resize(3 * n);
   phases_.start();
   start_sums(threads);
-  double* held = particles_.external_force.data();
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     const int t = threads > 1 ? thread_id() : 0;
     const auto [p0, p1] = share(n, t, threads);
-    // The held external force, copied by each thread for its own particles before it reads them
-    // (instead of a serial copy of the whole array first).
-    if (!external.empty()) std::copy(external.data() + 2 * p0, external.data() + 2 * p1, held + 2 * p0);
     finish_range(p0, p1, kick_dt, sums_[t]);
   }
   book(total_sums());
@@ -528,33 +524,22 @@ void DemSystem::begin_step(double dt) {
 
 void DemSystem::finish_step(double dt, std::span<const double> external) {
   if (!in_split_step_) throw std::logic_error("finish_step without begin_step");
-  const double kick_dt = settings_.prescribed_motion ? 0.0 : dt;
-  if (!membrane_.particles.empty()) {  // the membrane's load goes on top of the held force
-    hold_external_force(external);
-    if (!internal_forces_current_) compute_internal_forces();
-    finish_forces(kick_dt);
-  } else {
-    check_external_force(external);
-    if (!internal_forces_current_) compute_internal_forces();
-    finish_forces(kick_dt, external);  // holds it on the way
-  }
+  hold_external_force(external);
+  if (!internal_forces_current_) compute_internal_forces();
+  finish_forces(settings_.prescribed_motion ? 0.0 : dt);
   in_split_step_ = false;
   if (!servos_.empty()) steer_servo_walls();
 }
 
-void DemSystem::check_external_force(std::span<const double> external) {
+void DemSystem::hold_external_force(std::span<const double> external) {
   if (external.size() != particles_.external_force.size()) {
     throw std::invalid_argument("external force has " + std::to_string(external.size()) +
                                 " values for " + std::to_string(particles_.size()) + " particles");
   }
+  std::copy(external.begin(), external.end(), particles_.external_force.begin());
   if (!has_body_forces_) {
     has_body_forces_ = std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
   }
-}
-
-void DemSystem::hold_external_force(std::span<const double> external) {
-  check_external_force(external);
-  std::copy(external.begin(), external.end(), particles_.external_force.begin());
   for (std::size_t k = 0; k < membrane_.particles.size(); ++k) {
     particles_.external_force[2 * membrane_.particles[k]] += membrane_.force_x_n_per_m[k];
   }

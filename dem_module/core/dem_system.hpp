@@ -147,12 +147,9 @@ class DemSystem {
   /// Prescribed motion: the velocity of the field at the mid-step time t (replaces the kicks).
   void set_prescribed_velocity(double t);
   /// total force = internal + external, then local damping (eq. 10); accumulates work terms;
-  /// with kick_dt > 0 also the second half kick (eq. 8) in the same pass. A non-empty `external`
-  /// (checked by check_external_force) becomes the held external force on the way.
-  void finish_forces(double kick_dt, std::span<const double> external = {});
-  /// Refuses a fluid force of the wrong size; notes whether it is anything but zero.
-  void check_external_force(std::span<const double> external);
-  /// Copies the fluid force into the held external force (and adds the membrane's load).
+  /// with kick_dt > 0 also the second half kick (eq. 8) in the same pass.
+  void finish_forces(double kick_dt);
+  /// Copies the fluid force into the held external force.
   void hold_external_force(std::span<const double> external);
   void rebuild_neighbours();
   /// The same, called by every thread t of a team of `threads` (inside a parallel region): the

@@ -146,6 +146,7 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
   if (!(dt_s >= 0.0) || !std::isfinite(dt_s)) {
     throw std::invalid_argument("fluid: step with dt_s = " + std::to_string(dt_s));
   }
+  const auto count = static_cast<std::ptrdiff_t>(n);
   phases_.start();
   const Staleness stale = staleness(k.position, k.wall_segments);
   phases_.lap(kStaleness);
@@ -195,7 +196,6 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
     }
     // Per-particle loops on the model's threads, here and below: the same bits at any count.
     const double am = params_.alpha * params_.bulk_modulus_pa;
-    const auto count = static_cast<std::ptrdiff_t>(n);
     double* rate = strain_rate_.data();
     double* source = source_.data();
 #pragma omp parallel for schedule(static)
@@ -212,7 +212,6 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
       if (boundary_[i] == Boundary::drained) pressure_[i] = params_.p_hydro_pa;
     }
   }
-  const auto count = static_cast<std::ptrdiff_t>(n);
   const double* p = pressure_.data();
   std::size_t cavitated = 0;
   if (params_.cavitation) {

@@ -84,6 +84,14 @@ void BM_BondedBlockCutting(benchmark::State& state) {
 BENCHMARK(BM_BondedBlockCutting)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
     ->MinTime(3.0);
 
+// The dynamic scenes' model, dashpots of zeta 0.1, on 1 and 2 threads: what bench_whole_cut.py
+// holds a dry dynamic cut's whole-run rate against.
+void BM_BondedBlockCuttingViscous(benchmark::State& state) {
+  time_steps(state, *bonded_block_with_tool(static_cast<int>(state.range(0)), 1));
+}
+BENCHMARK(BM_BondedBlockCuttingViscous)->Arg(1)->Arg(2)->UseRealTime()
+    ->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
 // One thread, per damping model (argument as bonded_block_with_tool's `damping`).
 void BM_BondedBlockCuttingDamping(benchmark::State& state) {
   time_steps(state, *bonded_block_with_tool(1, static_cast<int>(state.range(0))));

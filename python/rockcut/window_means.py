@@ -192,6 +192,11 @@ def windows(series, every_m, from_m, breaks=None):
                 "from_m": start, "to_m": last if is_last else end, "samples": int(picked.sum()),
                 "fh_n_per_m": mean(-series["tool_force_x_n_per_m"][picked]),
                 "fv_n_per_m": mean(series["tool_force_y_n_per_m"][picked]),
+                # A dynamic cut's force is read at its peak; the mean is mostly the zeros
+                # between chips, which the contact share says (both as summary.json's).
+                "fh_peak_n_per_m": float((-series["tool_force_x_n_per_m"][picked]).max()),
+                "contact_fraction": float(((series["tool_force_x_n_per_m"][picked] != 0) |
+                                           (series["tool_force_y_n_per_m"][picked] != 0)).mean()),
             }
             for node in NODES:
                 p_key = f"fluid_probe_{node}_pa"
@@ -218,7 +223,7 @@ def fmt(value, scale, digits):
 
 def print_table(rows):
     coupled = any("p1_pa" in r for r in rows)
-    head = ["travel [mm]", "samples", "Fh [kN/m]", "Fv [kN/m]"]
+    head = ["travel [mm]", "samples", "Fh [kN/m]", "Fv [kN/m]", "Fh peak [kN/m]", "contact %"]
     if coupled:
         head += ["P1 [MPa]", "P2 [MPa]", "P3 [MPa]"]
     head += ["tensile", "shear", "shear %", "chips", "chip [mm^2]"]
@@ -233,7 +238,8 @@ def print_table(rows):
         tensile, shear = r.get("breaks_tensile"), r.get("breaks_shear")
         fraction = shear_fraction(r)
         cells = [f"{r['from_m'] * 1e3:.1f}-{r['to_m'] * 1e3:.1f}", str(r["samples"]),
-                 fmt(r["fh_n_per_m"], 1e-3, 1), fmt(r["fv_n_per_m"], 1e-3, 1)]
+                 fmt(r["fh_n_per_m"], 1e-3, 1), fmt(r["fv_n_per_m"], 1e-3, 1),
+                 fmt(r["fh_peak_n_per_m"], 1e-3, 1), fmt(r["contact_fraction"], 100, 0)]
         if coupled:
             cells += [fmt(r.get(f"{n}_pa"), 1e-6, 2) for n in NODES]
         cells += [fmt(tensile, 1, 0), fmt(shear, 1, 0), fmt(fraction, 100, 0),

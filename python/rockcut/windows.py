@@ -14,6 +14,12 @@ prints one row:
   samples                  time-series samples in it
   Fh, Fv [kN/m]            mean horizontal force resisting the cut (-tool_force_x) and vertical
                            force on the tool (up > 0): the signs of summary.json
+  Fh peak [kN/m]           the largest horizontal force resisting the cut in the window: what
+                           a dynamic cut's force is read by (summary.json's
+                           force_horizontal_peak_n_per_m over its steady part)
+  contact %                the share of the window's samples with a force on the tool
+                           (summary.json's tool_contact_fraction): a dynamic cut's mean is
+                           mostly the zeros between chips
   P1, P2, P3 [MPa]         coupled runs: mean p - p_hydro of each pressure node, over the samples
                            in which the node held a particle centre (as summary.json); '-' if none
   tensile, shear, shear %  bond breaks by mode at the window's last sample
@@ -35,7 +41,8 @@ against travel in kN/m per mm, how far a cut still climbs where summary.json tak
 
 The means are those of summary.json taken over a window instead of the steady part: with
 --from-mm at `steady_after_m` and --every-mm past the end, the one window gives summary.json's
-force_*_mean_n_per_m and pressure_*_mean_pa (tests/python/windows_test.py).
+force_*_mean_n_per_m, force_horizontal_peak_n_per_m, tool_contact_fraction and
+pressure_*_mean_pa (tests/python/windows_test.py).
 
   --every-mm W   window width in mm of tool travel (default 10)
   --from-mm A    first window's start in mm (default 0: the tool at the block)

@@ -67,6 +67,10 @@ class WindowsOfACut(unittest.TestCase):
         self.assertGreater(row["samples"], 50)
         self.assert_close(row["fh_n_per_m"], s["force_horizontal_mean_n_per_m"], "Fh")
         self.assert_close(row["fv_n_per_m"], s["force_vertical_mean_n_per_m"], "Fv")
+        # The largest sample and a count: the same number, not merely close.
+        self.assertEqual(row["fh_peak_n_per_m"], s["force_horizontal_peak_n_per_m"])
+        self.assertGreater(row["fh_peak_n_per_m"], 0.0)
+        self.assert_close(row["contact_fraction"], s["tool_contact_fraction"], "contact")
         for node in ("p1", "p2", "p3"):
             if s[f"pressure_{node}_samples"] == 0:
                 self.assertTrue(math.isnan(row[f"{node}_pa"]), node)

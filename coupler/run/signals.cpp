@@ -24,6 +24,8 @@ void install_stop_signal_handlers() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGHUP, &action, nullptr);
+  signal(SIGPIPE, SIG_IGN);  // a closed stdout fails the write (EPIPE), not the run
   struct sigaction checkpoint {};
   checkpoint.sa_handler = on_checkpoint_signal;
   sigemptyset(&checkpoint.sa_mask);

@@ -1,8 +1,10 @@
 // Faults: a module killed, a module that stops answering, a version mismatch, a signal to the
 // coupler. Each must give a one-line error naming the module, a readable partial run.h5, a non-zero
 // exit and no orphan process.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <unistd.h>
 
 #include <thread>
 
@@ -146,7 +148,42 @@ TEST_P(StopSignal, ShutsEverythingDownWithOutputClosed) {
   EXPECT_TRUE(is_gone(fluid));
 }
 
-INSTANTIATE_TEST_SUITE_P(IntAndTerm, StopSignal, ::testing::Values(SIGINT, SIGTERM));
+// SIGHUP: the terminal the run was started from closed (a lost ssh session).
+INSTANTIATE_TEST_SUITE_P(IntTermAndHup, StopSignal, ::testing::Values(SIGINT, SIGTERM, SIGHUP));
+
+// `coupler run ... | head`, or a driver script killed while its run goes on: stdout's reader is
+// gone before the coupler's first line. The run must finish and clean up, not die of SIGPIPE
+// (exit 141) with its modules' sockets and shared memory left behind.
+TEST(Faults, ClosedStdoutLetsTheRunFinish) {
+  const fs::path dir = fresh_dir("closed_stdout");
+  fs::create_directories(dir);
+  std::vector<std::string> storage = {bin("coupler"), "run", kScene, "--out",
+                                      (dir / "out").string()};
+  std::vector<char*> args;
+  for (auto& a : storage) args.push_back(a.data());
+  args.push_back(nullptr);
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  const std::string err_file = (dir / "coupler.stderr").string();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fds[1], 1);
+    close(fds[0]);
+    close(fds[1]);
+    const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(err, 2);
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  const KillOnExit guard{pid};
+  close(fds[0]);  // no reader from here on
+  close(fds[1]);
+  const auto code = wait_exit(pid, 60000ms);
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 0) << read_file(err_file);
+  const auto summary = coupler::read_summary(dir / "out" / "summary.json");
+  EXPECT_EQ(std::get<std::string>(*summary.get("status")), "completed");
+}
 
 TEST(Faults, KilledCouplerLeavesNoOrphans) {
   const fs::path dir = fresh_dir("coupler_killed");

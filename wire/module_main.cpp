@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 
@@ -18,6 +19,8 @@ void tune_allocator_for_bulk_frames() {
 
 int module_main(int argc, char** argv, ModuleHandler& handler) {
   tune_allocator_for_bulk_frames();
+  // A module started by hand whose terminal's reader went away fails a write, not its session.
+  signal(SIGPIPE, SIG_IGN);
   CLI::App app{handler.name() + " " + handler.version() +
                ": a rockcut module. Normally started by `coupler run`; start it by hand to attach "
                "a coupler over tcp (`coupler run CASE --transport tcp ...`)."};

@@ -4,8 +4,8 @@ whether a coupled run is as fast as its dry run and a dry run as fast as the DEM
 
   bench/bench_whole_cut.py [--scene dry,saturated] [--depth 0] [--scale paper|reduced]
                            [--damping viscous|local] [--windows-mm 0,10,25,40]
-                           [--set PATH=VALUE] ... [--no-bench-dem] [--json FILE] [--keep DIR]
-                           [--coupler PATH] [--bench-dem PATH]
+                           [--set PATH=VALUE] ... [--no-bench-dem] [--json FILE]
+                           [--keep DIR [--resume]] [--coupler PATH] [--bench-dem PATH]
 
 Each run is `coupler run SCENE` with the scene's own output (frames, time series, checkpoints), as
 a user starts it; --set adds overrides to every run (e.g. time.end_time_s for a shorter cut). The
@@ -22,10 +22,15 @@ It prints per run:
                                   whole run's over the first window's: the criterion "whole cuts
                                   as fast per step as their early stretches"
 and then the saturated runs' wall over the dry run's and the dry run's rate over bench_dem's.
-A paper-scale dry cut takes about an hour on two cores and a saturated one three to four.
+A paper-scale dry cut takes about an hour on two cores and a saturated one three to four. Such
+a call can be taken in parts: Ctrl-C stops the run in progress after a checkpoint (the coupler's
+own stop), and the same command with --keep DIR --resume continues it where it stopped and runs
+the rest; a run's wall is then the sum of its segments', each placed after the wall at which the
+segments before reached its checkpoint.
 """
 import argparse
 import json
+import math
 import os
 import re
 import shutil
@@ -38,6 +43,8 @@ import bench_real_cut  # bench/: the scenes and the effective scene's fields
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PROGRESS = re.compile(r"^t = ([-+0-9.eE]+) / [-+0-9.eE]+ s\s+step (\d+) / \d+\s+wall ([0-9.]+) s",
                       re.M)
+RESUMED_AT = re.compile(r"^resume\s+from .*? \(step (\d+),", re.M)
+SEGMENT = "=== bench_whole_cut: a segment of the run\n"
 
 
 def progress_points(log_text):
@@ -45,6 +52,29 @@ def progress_points(log_text):
     points = [(0.0, 0, 0.0)]
     for m in PROGRESS.finditer(log_text):
         points.append((float(m.group(1)), int(m.group(2)), float(m.group(3))))
+    return points
+
+
+def joined_points(log_text):
+    """progress_points of a run made of segments (SEGMENT lines between them, each after the
+    first resumed from a checkpoint): each segment's wall restarts at 0 and its first steps redo
+    those after the checkpoint, so it is placed at the wall the segments before reached the
+    checkpoint's step, and their lines past that step are dropped."""
+    points = []
+    for text in log_text.split(SEGMENT):
+        if not text.strip():
+            continue
+        own = progress_points(text)
+        m = RESUMED_AT.search(text)
+        if points and m:
+            step = int(m.group(1))
+            offset = wall_at(points, step, math.inf)
+            if offset is None:  # past the earlier lines: the last one's wall
+                offset = points[-1][2]
+            points = [p for p in points if p[1] < step]
+            points += [(t, s, w + offset) for t, s, w in own[1:] if s > step]
+            continue
+        points = own
     return points
 
 
@@ -79,19 +109,46 @@ def windows(points, steps, wall_s, dt_s, gap_m, velocity_m_s, edges_mm):
     return rows
 
 
-def whole_run(coupler, scene, depth, sets, out):
-    argv = [coupler, "run", os.path.join(ROOT, scene), "--out", out, "--overwrite"]
-    if depth is not None:
-        argv += ["--set", "water_depth_m=%g" % depth]
-    for s in sets:
-        argv += ["--set", s]
-    p = subprocess.run(argv, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit("bench_whole_cut: %s failed (%d):\n%s" % (" ".join(argv), p.returncode,
-                                                           p.stderr[-3000:]))
-    with open(os.path.join(out, "summary.json")) as f:
-        summary = json.load(f)
-    return summary, p.stdout + p.stderr
+def read_summary(out):
+    try:
+        with open(os.path.join(out, "summary.json")) as f:
+            return json.load(f)
+    except FileNotFoundError:
+        return None
+
+
+def whole_run(coupler, scene, depth, sets, out, resume, end_time_s):
+    """Runs the scene into `out` (with `resume`, continues what a stopped call left there; a run
+    that completed to `end_time_s` is taken as it is), its output appended to out + ".log" one
+    segment after the other. Returns its summary and that log."""
+    log_path = out + ".log"
+    summary = read_summary(out) if resume else None
+    done = (summary is not None and summary.get("status") == "completed" and
+            summary["time_s"] >= end_time_s - 0.5 * summary["dt_s"])
+    if not done:
+        argv = [coupler, "run", os.path.join(ROOT, scene), "--out", out,
+                "--resume" if resume else "--overwrite"]
+        if depth is not None:
+            argv += ["--set", "water_depth_m=%g" % depth]
+        for s in sets:
+            argv += ["--set", s]
+        with open(log_path, "a" if resume else "w") as log:
+            log.write(SEGMENT)
+            log.flush()
+            p = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT)
+            try:
+                code = p.wait()
+            except KeyboardInterrupt:  # Ctrl-C reached the coupler too: it checkpoints and stops
+                p.wait()
+                sys.exit("bench_whole_cut: stopped; the same command with --resume continues "
+                         "from the runs' checkpoints in %s" % os.path.dirname(out))
+        if code != 0:
+            with open(log_path) as f:
+                tail = f.read()[-3000:]
+            sys.exit("bench_whole_cut: %s failed (%d):\n%s" % (" ".join(argv), code, tail))
+        summary = read_summary(out)
+    with open(log_path) as f:
+        return summary, f.read()
 
 
 def bench_dem_rate(bench_dem, threads, damping_model):
@@ -127,12 +184,17 @@ def main():
     ap.add_argument("--no-bench-dem", action="store_true")
     ap.add_argument("--json", help="write the figures here")
     ap.add_argument("--keep", help="keep the runs' directories here (default: removed)")
+    ap.add_argument("--resume", action="store_true",
+                    help="with --keep: continue the runs a stopped call (Ctrl-C) left in it")
     ap.add_argument("--coupler", default=os.path.join(ROOT, "build", "bin", "coupler"))
     ap.add_argument("--bench-dem", help="default: bench_dem beside --coupler")
     args = ap.parse_args()
+    if args.resume and not args.keep:
+        ap.error("--resume continues the runs in --keep DIR: give it")
     edges = [float(x) for x in args.windows_mm.split(",")]
     bench_dem = args.bench_dem or os.path.join(os.path.dirname(args.coupler), "bench_dem")
     work = args.keep or tempfile.mkdtemp(prefix="rockcut-bench-whole-")
+    os.makedirs(work, exist_ok=True)
     results = {"runs": []}
     dry_threads = dry_damping = None
     try:
@@ -146,11 +208,12 @@ def main():
             for depth in depths:
                 sets = ([] if depth is None else ["water_depth_m=%g" % depth]) + args.set
                 text = bench_real_cut.effective_scene(args.coupler, scene, sets)
-                out = os.path.join(work, "%s_%s" % (name, "dry" if depth is None else "%gm" % depth))
-                summary, log = whole_run(args.coupler, scene, depth, args.set, out)
+                out = os.path.join(work, name if depth is None else "%s_%gm" % (name, depth))
+                summary, log = whole_run(args.coupler, scene, depth, args.set, out, args.resume,
+                                         bench_real_cut.field(text, "time", "end_time_s"))
                 gap = bench_real_cut.field(text, "tool", "start_gap_m")
                 velocity = bench_real_cut.field(text, "tool", "velocity_m_s") or 1.0
-                rows = windows(progress_points(log), summary["steps"], summary["wall_time_s"],
+                rows = windows(joined_points(log), summary["steps"], summary["wall_time_s"],
                                summary["dt_s"], 0.001 if gap is None else gap, velocity, edges)
                 whole_ms = 1e3 * summary["wall_time_s"] / summary["steps"]
                 run = {"scene": scene, "depth_m": depth, "wall_s": summary["wall_time_s"],

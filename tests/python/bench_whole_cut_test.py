@@ -55,6 +55,24 @@ class Windows(unittest.TestCase):
         self.assertEqual([(a, b) for a, b, _ in rows], [(10, 20), (20, None)])
 
 
+    def test_segments_of_a_resumed_run_join_at_its_checkpoint(self):
+        # 1 ms per step throughout. The first segment logs to step 5000 and stops; the second
+        # resumes from the checkpoint at step 4000, its wall restarting at 0 and its first 1000
+        # steps redoing those after the checkpoint.
+        first = progress_log([(s, s * 1e-3) for s in range(1000, 5001, 1000)])
+        second = ("resume     from /a b/checkpoints/checkpoint_000000004000.h5 (step 4000, "
+                  "t = 0.004 s; read in 0.01 s)\n" +
+                  progress_log([(s, (s - 4000) * 1e-3) for s in range(5000, 9001, 1000)]))
+        log = bench_whole_cut.SEGMENT + first + bench_whole_cut.SEGMENT + second
+        points = bench_whole_cut.joined_points(log)
+        self.assertEqual([p[1] for p in points], [0, 1000, 2000, 3000, 5000, 6000, 7000, 8000, 9000])
+        for _, step, wall in points:
+            self.assertAlmostEqual(wall, step * 1e-3)
+        # One segment alone is its own lines.
+        self.assertEqual(bench_whole_cut.joined_points(bench_whole_cut.SEGMENT + first),
+                         bench_whole_cut.progress_points(first))
+
+
 class WholeCut(unittest.TestCase):
     def test_runs_one_after_the_other_then_bench_dem(self):
         tmp = os.path.join(ARGS.tmp, "bench_whole_cut")
@@ -82,6 +100,23 @@ class WholeCut(unittest.TestCase):
             self.assertTrue(os.path.exists(os.path.join(
                 tmp, "runs", "dry" if run["depth_m"] is None else "saturated_0m", "run.h5")))
         self.assertAlmostEqual(saturated["wall_over_dry"], saturated["wall_s"] / dry["wall_s"])
+        # The same runs taken further with --resume: each continues from its end-of-run checkpoint
+        # (a second segment in its log) instead of starting again.
+        resumed = argv[:argv.index("time.end_time_s=0.003")] + ["time.end_time_s=0.004"] + \
+            argv[argv.index("time.end_time_s=0.003") + 1:] + ["--resume", "--no-bench-dem"]
+        p = subprocess.run(resumed, capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        with open(out) as f:
+            longer = json.load(f)
+        for before, after in zip(result["runs"], longer["runs"]):
+            self.assertGreater(after["steps"], before["steps"])
+            name = "dry" if after["depth_m"] is None else "saturated_0m"
+            with open(os.path.join(tmp, "runs", name + ".log")) as f:
+                log = f.read()
+            self.assertEqual(log.count(bench_whole_cut.SEGMENT), 2)
+            self.assertIn("resume     from", log)
+            # The resumed run's wall counts both segments'.
+            self.assertGreater(after["wall_s"], before["wall_s"])
         self.assertIn("saturated 0m / dry: wall", p.stdout)
         if os.path.exists(bench_dem):
             # The reduced dry scene: dashpots on one thread.

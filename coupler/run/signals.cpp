@@ -24,7 +24,11 @@ void install_stop_signal_handlers() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-  sigaction(SIGHUP, &action, nullptr);
+  // A hang-up stops the run, unless it was started to outlive its terminal (`nohup` leaves SIGHUP
+  // ignored, and an ignored signal stays ignored).
+  struct sigaction hangup {};
+  sigaction(SIGHUP, nullptr, &hangup);
+  if (hangup.sa_handler != SIG_IGN) sigaction(SIGHUP, &action, nullptr);
   signal(SIGPIPE, SIG_IGN);  // a closed stdout fails the write (EPIPE), not the run
   struct sigaction checkpoint {};
   checkpoint.sa_handler = on_checkpoint_signal;

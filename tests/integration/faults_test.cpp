@@ -151,6 +151,23 @@ TEST_P(StopSignal, ShutsEverythingDownWithOutputClosed) {
 // SIGHUP: the terminal the run was started from closed (a lost ssh session).
 INSTANTIATE_TEST_SUITE_P(IntTermAndHup, StopSignal, ::testing::Values(SIGINT, SIGTERM, SIGHUP));
 
+// `nohup coupler run ...`: started with SIGHUP ignored, the run outlives its terminal.
+TEST(Faults, HangUpUnderNohupIsIgnored) {
+  const fs::path dir = fresh_dir("nohup");
+  const auto previous = signal(SIGHUP, SIG_IGN);  // inherited by the spawned coupler, as nohup does
+  const Spawned coupler = start_long_run(dir);
+  signal(SIGHUP, previous);
+  const KillOnExit guard{coupler.pid};
+  wait_for_frames(dir / "out");
+  kill(coupler.pid, SIGHUP);
+  EXPECT_FALSE(wait_exit(coupler.pid, 1000ms).has_value()) << "a hang-up under nohup stopped the run";
+  kill(coupler.pid, SIGTERM);
+  const auto code = wait_exit(coupler.pid, 10000ms);
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 128 + SIGTERM);
+  expect_readable_partial_output(dir / "out", "interrupted");
+}
+
 // `coupler run ... | head`, or a driver script killed while its run goes on: stdout's reader is
 // gone before the coupler's first line. The run must finish and clean up, not die of SIGPIPE
 // (exit 141) with its modules' sockets and shared memory left behind.

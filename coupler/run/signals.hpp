@@ -1,8 +1,9 @@
 // Signals a run obeys. SIGINT, SIGTERM and SIGHUP (the terminal closed: a lost ssh session; not
-// under `nohup`, which leaves it ignored) ask the run to stop: while the loop runs (graceful stops on), it completes the exchange in progress,
-// writes a checkpoint and stops with status "interrupted"; a second one, or one during start-up,
-// stops at the next wait without a checkpoint. SIGUSR1 (what a scheduler sends before a time limit,
-// e.g. Slurm's --signal=B:USR1@120) asks for a checkpoint, after which the run carries on.
+// under `nohup`, which leaves it ignored) ask the run to stop: while the loop runs (graceful stops
+// on), it completes the exchange in progress, writes a checkpoint and stops with status
+// "interrupted"; a second one, or one during start-up, stops at the next wait without a checkpoint.
+// SIGUSR1 (what a scheduler sends before a time limit, e.g. Slurm's --signal=B:USR1@120) asks for
+// a checkpoint, after which the run carries on.
 // SIGPIPE is ignored: a run whose reader went away (`coupler run ... | head`, a killed driver
 // script) carries on writing its files instead of dying on its next log line, which would leave
 // its modules' sockets and shared memory behind.

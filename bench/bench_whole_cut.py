@@ -117,7 +117,7 @@ def read_summary(out):
         return None
 
 
-def whole_run(coupler, scene, depth, sets, out, resume, end_time_s):
+def whole_run(coupler, scene, sets, out, resume, end_time_s):
     """Runs the scene into `out` (with `resume`, continues what a stopped call left there; a run
     that completed to `end_time_s` is taken as it is), its output appended to out + ".log" one
     segment after the other. Returns its summary and that log."""
@@ -128,8 +128,6 @@ def whole_run(coupler, scene, depth, sets, out, resume, end_time_s):
     if not done:
         argv = [coupler, "run", os.path.join(ROOT, scene), "--out", out,
                 "--resume" if resume else "--overwrite"]
-        if depth is not None:
-            argv += ["--set", "water_depth_m=%g" % depth]
         for s in sets:
             argv += ["--set", s]
         with open(log_path, "a" if resume else "w") as log:
@@ -209,7 +207,7 @@ def main():
                 sets = ([] if depth is None else ["water_depth_m=%g" % depth]) + args.set
                 text = bench_real_cut.effective_scene(args.coupler, scene, sets)
                 out = os.path.join(work, name if depth is None else "%s_%gm" % (name, depth))
-                summary, log = whole_run(args.coupler, scene, depth, args.set, out, args.resume,
+                summary, log = whole_run(args.coupler, scene, sets, out, args.resume,
                                          bench_real_cut.field(text, "time", "end_time_s"))
                 gap = bench_real_cut.field(text, "tool", "start_gap_m")
                 velocity = bench_real_cut.field(text, "tool", "velocity_m_s") or 1.0

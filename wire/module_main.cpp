@@ -19,7 +19,8 @@ void tune_allocator_for_bulk_frames() {
 
 int module_main(int argc, char** argv, ModuleHandler& handler) {
   tune_allocator_for_bulk_frames();
-  // A module started by hand whose terminal's reader went away fails a write, not its session.
+  // Its stdout and stderr are the coupler's, or a terminal's when started by hand: if their reader
+  // has gone, a write fails instead of killing the module (as in the coupler, run/signals.hpp).
   signal(SIGPIPE, SIG_IGN);
   CLI::App app{handler.name() + " " + handler.version() +
                ": a rockcut module. Normally started by `coupler run`; start it by hand to attach "

@@ -44,13 +44,11 @@ ChildProcess::ChildProcess(const std::filesystem::path& executable,
   if (pid_ < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
   if (pid_ == 0) {
     // Child: die with the coupler, whatever kills it; keep the terminal's SIGINT away so the coupler
-    // alone decides how to shut down. It writes to the coupler's stdout and stderr: if their reader
-    // has gone, a write fails instead of killing the module (as in the coupler, run/signals.hpp).
+    // alone decides how to shut down.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(127);
     setpgid(0, 0);
     signal(SIGINT, SIG_IGN);
-    signal(SIGPIPE, SIG_IGN);
     execv(argv[0], argv.data());
     _exit(127);
   }

@@ -149,7 +149,7 @@ class DemSystem {
   /// total force = internal + external, then local damping (eq. 10); accumulates work terms;
   /// with kick_dt > 0 also the second half kick (eq. 8) in the same pass.
   void finish_forces(double kick_dt);
-  /// Copies the fluid force into the held external force.
+  /// Copies the fluid force into the held external force, and adds the membrane's load on top.
   void hold_external_force(std::span<const double> external);
   void rebuild_neighbours();
   /// The same, called by every thread t of a team of `threads` (inside a parallel region): the

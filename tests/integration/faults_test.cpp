@@ -173,31 +173,16 @@ TEST(Faults, HangUpUnderNohupIsIgnored) {
 // (exit 141) with its modules' sockets and shared memory left behind.
 TEST(Faults, ClosedStdoutLetsTheRunFinish) {
   const fs::path dir = fresh_dir("closed_stdout");
-  fs::create_directories(dir);
-  std::vector<std::string> storage = {bin("coupler"), "run", kScene, "--out",
-                                      (dir / "out").string()};
-  std::vector<char*> args;
-  for (auto& a : storage) args.push_back(a.data());
-  args.push_back(nullptr);
   int fds[2];
-  ASSERT_EQ(pipe(fds), 0);
-  const std::string err_file = (dir / "coupler.stderr").string();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    dup2(fds[1], 1);
-    close(fds[0]);
-    close(fds[1]);
-    const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(err, 2);
-    execv(args[0], args.data());
-    _exit(127);
-  }
-  const KillOnExit guard{pid};
+  ASSERT_EQ(pipe2(fds, O_CLOEXEC), 0);
+  const Spawned coupler =
+      spawn({bin("coupler"), "run", kScene, "--out", (dir / "out").string()}, dir, "coupler", fds[1]);
+  const KillOnExit guard{coupler.pid};
   close(fds[0]);  // no reader from here on
   close(fds[1]);
-  const auto code = wait_exit(pid, 60000ms);
+  const auto code = wait_exit(coupler.pid, 60000ms);
   ASSERT_TRUE(code.has_value());
-  EXPECT_EQ(*code, 0) << read_file(err_file);
+  EXPECT_EQ(*code, 0) << read_file(coupler.err_file);
   const auto summary = coupler::read_summary(dir / "out" / "summary.json");
   EXPECT_EQ(std::get<std::string>(*summary.get("status")), "completed");
 }

@@ -25,7 +25,8 @@ KillOnExit::~KillOnExit() {
   }
 }
 
-Spawned spawn(const std::vector<std::string>& argv, const fs::path& dir, const std::string& tag) {
+Spawned spawn(const std::vector<std::string>& argv, const fs::path& dir, const std::string& tag,
+              int stdout_fd) {
   Spawned s;
   fs::create_directories(dir);
   s.out_file = dir / (tag + ".stdout");
@@ -36,7 +37,8 @@ Spawned spawn(const std::vector<std::string>& argv, const fs::path& dir, const s
   args.push_back(nullptr);
   s.pid = fork();
   if (s.pid == 0) {
-    const int out = open(s.out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out =
+        stdout_fd >= 0 ? stdout_fd : open(s.out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err = open(s.err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(out, 1);
     dup2(err, 2);

@@ -24,9 +24,11 @@ struct KillOnExit {
   ~KillOnExit();
 };
 
-/// Starts `argv` (argv[0] is the program path) with stdout/stderr into files under `dir`.
+/// Starts `argv` (argv[0] is the program path) with stdout/stderr into files under `dir`; with
+/// `stdout_fd` >= 0, stdout goes to that descriptor instead (open it close-on-exec, so that the
+/// child keeps only its own copy).
 Spawned spawn(const std::vector<std::string>& argv, const std::filesystem::path& dir,
-              const std::string& tag);
+              const std::string& tag, int stdout_fd = -1);
 
 /// Waits for `pid`; returns its exit code (128 + signal if killed), or nullopt on timeout.
 std::optional<int> wait_exit(pid_t pid, std::chrono::milliseconds timeout);

@@ -1,15 +1,17 @@
 // DEM step throughput on the benchmark packing (bench/data/pack57k.txt, 57,636 discs): the
-// bonded block being cut by the chisel, with bond shear springs and break checks on, for 1 and 2
-// threads. Reports particle-steps per second, the figure bench/data/README.md gives for
+// bonded block being cut by the chisel, with bond shear springs and break checks on, for 1, 2 and
+// more threads, up to the machine's. Reports particle-steps per second, the figure bench/data/README.md gives for
 // LAMMPS, LIGGGHTS and YADE on the same packing (k_n 1e10, k_t 2.5e10 Pa, friction 1, dt 2e-8 s).
 //
 // Run: build/bin/bench_dem [--packing PATH]   (default: bench/data/pack57k.txt)
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "core/dem_system.hpp"
 #include "core/packing_file.hpp"
@@ -78,18 +80,26 @@ void time_steps(benchmark::State& state, rockcut::dem::DemSystem& system) {
   state.counters["rebuilds"] = static_cast<double>(system.neighbour_rebuilds());
 }
 
+// 1, 2 and the powers of two up to this machine's hardware threads, and that count itself: the
+// scaling measured where the cores are (bench/scaling_model.py's model predicts it from 1 and 2).
+void thread_counts(benchmark::internal::Benchmark* b) {
+  const int cores = static_cast<int>(std::max(2u, std::thread::hardware_concurrency()));
+  for (int t = 1; t < cores; t *= 2) b->Arg(t);
+  b->Arg(cores);
+}
+
 void BM_BondedBlockCutting(benchmark::State& state) {
   time_steps(state, *bonded_block_with_tool(static_cast<int>(state.range(0))));
 }
-BENCHMARK(BM_BondedBlockCutting)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
+BENCHMARK(BM_BondedBlockCutting)->Apply(thread_counts)->UseRealTime()->Unit(benchmark::kMillisecond)
     ->MinTime(3.0);
 
-// The dynamic scenes' model, dashpots of zeta 0.1, on 1 and 2 threads: what bench_whole_cut.py
+// The dynamic scenes' model, dashpots of zeta 0.1, on 1, 2, ... threads (thread_counts): what bench_whole_cut.py
 // holds a dry dynamic cut's whole-run rate against.
 void BM_BondedBlockCuttingViscous(benchmark::State& state) {
   time_steps(state, *bonded_block_with_tool(static_cast<int>(state.range(0)), 1));
 }
-BENCHMARK(BM_BondedBlockCuttingViscous)->Arg(1)->Arg(2)->UseRealTime()
+BENCHMARK(BM_BondedBlockCuttingViscous)->Apply(thread_counts)->UseRealTime()
     ->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 // One thread, per damping model (argument as bonded_block_with_tool's `damping`).

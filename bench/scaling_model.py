@@ -2,6 +2,7 @@
 """What a cut's step would cost on more cores: a model fitted to 1- and 2-thread stretches.
 
   bench/scaling_model.py RESULTS.json [--one t1] [--two t2] [--cores 2,4,16,64]
+                         [--check t4:4,t8:8,t16:16]
 
 RESULTS.json is what `bench/bench_real_cut.py --json` writes, with one variant on one thread per
 module and one on two, e.g.
@@ -12,12 +13,17 @@ module and one on two, e.g.
 Per scene and depth, per module phase p (medians over the repeats, per step):
   T_p(t) = s_p + q_p / t,   q_p = 2 (T_p(1) - T_p(2)),   s_p = T_p(1) - q_p
 (Amdahl's law from two points; a phase that got slower on two threads has q_p < 0, and is taken
-as serial with s_p = T_p(2), its two-thread cost, which then holds its synchronisation). The
-modules' service work and the transport are taken as serial (copies of the arrays, one thread),
-the barriers as growing with log2(t) from their two-thread cost. The step on C cores is the
-DEM's plus the fluid's (they take turns on all C cores) plus the serial rest. The model ignores
-memory bandwidth, which caps the pair loops well before 64 cores: its speed-ups are upper
-bounds.
+as serial with s_p = T_p(2), its two-thread cost, which then holds its synchronisation; one more
+than twice as fast on two, from the caches of two cores, has s_p < 0 and is taken as parallel
+with q_p = 2 T_p(2)). The modules' service work and the transport are taken as serial (copies of
+the arrays, one thread). A barrier's time is the wait for the slowest thread's share: the shares
+shrink as 1/t while their spread grows as log2(t), so B(t) = B(2) (2/t) log2(t). The step on C
+cores is the DEM's plus the fluid's (they take turns on all C cores) plus the serial rest. The
+model ignores memory bandwidth, which caps the pair loops well before 64 cores: its speed-ups
+are upper bounds.
+
+--check NAME:T,... compares the model with variants measured on T threads (a machine with the
+cores): per variant the predicted and the measured wall per step.
 """
 import argparse
 import json
@@ -31,6 +37,8 @@ def fit(t1, t2):
     q = 2.0 * (t1 - t2)
     if q <= 0:
         return t2, 0.0
+    if q > t1:  # superlinear from one to two threads: no serial part
+        return 0.0, 2.0 * t2
     return t1 - q, q
 
 
@@ -56,12 +64,12 @@ def per_step(rows):
 
 
 def model(one, two):
-    """{part: (serial, parallel, log2 coefficient)} from per-step costs at 1 and 2 threads."""
+    """{part: (serial, parallel, imbalance coefficient)} from per-step costs at 1 and 2 threads."""
     parts = {}
     for key in two:
         a, b = one.get(key, 0.0), two[key]
         if key.endswith(".barrier"):
-            parts[key] = (0.0, 0.0, b)       # b log2(t): nothing on one thread
+            parts[key] = (0.0, 0.0, b)       # b (2/t) log2(t): nothing on one thread
         elif key in ("service", "rest"):
             parts[key] = (max(b, 0.0), 0.0, 0.0)
         else:
@@ -71,7 +79,8 @@ def model(one, two):
 
 
 def step_cost(parts, threads):
-    return sum(s + q / threads + g * math.log2(threads) for s, q, g in parts.values())
+    return sum(s + q / threads + g * 2.0 * math.log2(threads) / threads
+               for s, q, g in parts.values())
 
 
 def main():
@@ -80,7 +89,13 @@ def main():
     ap.add_argument("--one", default="t1")
     ap.add_argument("--two", default="t2")
     ap.add_argument("--cores", default="2,4,16,64")
+    ap.add_argument("--check", default="",
+                    help="NAME:T,... variants measured on T threads, to hold the model against")
     args = ap.parse_args()
+    try:
+        check = [(n, int(t)) for n, t in (c.split(":") for c in args.check.split(",") if c)]
+    except ValueError:
+        sys.exit("scaling_model: --check %r: expected NAME:THREADS[,NAME:THREADS...]" % args.check)
     with open(args.results) as f:
         results = json.load(f)
     cores = [int(c) for c in args.cores.split(",")]
@@ -108,6 +123,14 @@ def main():
         for c in cores:
             t = step_cost(parts, c)
             print("  %3d cores: %.3f ms/step, %.1f times one thread" % (c, 1e3 * t, base / t))
+        for name, threads in check:
+            if name not in variants:
+                print("  %s: not measured" % name)
+                continue
+            measured = statistics.median(r["wall_s"] / r["steps"] for r in variants[name])
+            t = step_cost(parts, threads)
+            print("  %s on %d threads: model %.3f ms/step, measured %.3f (model/measured %.2f)" % (
+                name, threads, 1e3 * t, 1e3 * measured, t / measured))
 
 
 if __name__ == "__main__":

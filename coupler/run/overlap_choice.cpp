@@ -25,12 +25,16 @@ OverlapChoice choose_overlap(const std::string& setting, Transport transport,
                "over tcp the modules may have cores of their own)";
     return c;
   }
-  c.overlap = dem_threads + fluid_threads <= cores;
+  const bool idle_cores = dem_threads + fluid_threads <= cores;
+  c.overlap = idle_cores || cores >= kManyCores;
   c.report = std::string("overlap    ") +
              (c.overlap ? "the DEM's forces overlap the fluid's step (coupling.overlap \"auto\": "
                         : "the DEM's forces and the fluid's step take turns (coupling.overlap "
                           "\"auto\": ") +
-             threads + ")";
+             threads +
+             (idle_cores || !c.overlap ? ")"
+                                       : "; from 16 cores the step's serial parts hide behind "
+                                         "the other module's work)");
   return c;
 }
 

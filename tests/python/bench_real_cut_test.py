@@ -26,16 +26,18 @@ class ScalingModel(unittest.TestCase):
         self.assertAlmostEqual(scaling_model.predict(s, q, 16), 1e-3 + 4e-3 / 16)
         # Slower on two threads: serial at its two-thread cost.
         self.assertEqual(scaling_model.fit(1e-3, 1.2e-3), (1.2e-3, 0.0))
+        # More than twice as fast on two (two cores' caches): parallel, from the two-thread cost.
+        self.assertEqual(scaling_model.fit(5e-3, 2e-3), (0.0, 4e-3))
 
     def test_model_of_a_step(self):
         one = {"dem.bonds": 4e-3, "dem.barrier": 0.0, "service": 1e-4, "rest": 5e-5}
         two = {"dem.bonds": 2e-3, "dem.barrier": 1e-4, "service": 1e-4, "rest": 5e-5}
         parts = scaling_model.model(one, two)
-        # Perfectly parallel bonds, the barrier b log2(t), the service and the rest serial.
+        # Perfectly parallel bonds, the barrier b (2/t) log2(t), the service and the rest serial.
         self.assertAlmostEqual(scaling_model.step_cost(parts, 1), 4e-3 + 1.5e-4)
         self.assertAlmostEqual(scaling_model.step_cost(parts, 2), 2e-3 + 1e-4 + 1.5e-4)
         self.assertAlmostEqual(scaling_model.step_cost(parts, 64),
-                               4e-3 / 64 + 1e-4 * math.log2(64) + 1.5e-4)
+                               4e-3 / 64 + 1e-4 * 2 / 64 * math.log2(64) + 1.5e-4)
 
 
 class RealCut(unittest.TestCase):

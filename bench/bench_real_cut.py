@@ -4,7 +4,8 @@
   bench/bench_real_cut.py [--scene dry,saturated] [--depth 0,2000] [--at-mm 40]
                           [--stretch-mm 0.3] [--repeat 3] [--damping viscous|local]
                           [--scale paper|reduced]
-                          [--variant NAME:PATH=VALUE[,PATH=VALUE...]] ... [--cache DIR]
+                          [--variant NAME:PATH=VALUE[,PATH=VALUE...]] ...
+                          [--threads 1,2,4,...] [--overlap-threads 8,16] [--cache DIR]
                           [--json FILE] [--coupler PATH]
 
 The state at --at-mm of cut is made once per scene and depth (a `coupler run` to that travel,
@@ -14,7 +15,10 @@ effective scene. Each measurement copies it and continues it with `coupler resum
 --stretch-mm more. Variants change what a resume may change (the thread counts,
 coupling.overlap), e.g. `--variant turns:coupling.overlap=off --variant overlap:coupling.overlap=on`;
 the runs of one scene alternate between the variants, --repeat times, because this machine's speed
-moves by tens of percent from one hour to the next.
+moves by tens of percent from one hour to the next. `--threads 1,2,4` adds the variants t1, t2, t4
+(T threads for each module, taking turns: what bench/scaling_model.py reads), `--overlap-threads
+8,16` the variants o8, o16 (T each, overlapping; saturated scenes only). --json is written after
+every run, so a call stopped part-way keeps what it measured.
 
 Per run it prints, from the resumed run's summary.json (the stretch only):
   ms/step        wall per DEM step
@@ -67,6 +71,25 @@ def parse_variant(text):
         raise argparse.ArgumentTypeError(
             "variant %r: expected NAME:PATH=VALUE[,PATH=VALUE...]" % text)
     return name, sets.split(",")
+
+
+def thread_list(text):
+    """'1,2,4' -> [1, 2, 4]: thread counts of at least 1."""
+    try:
+        counts = [int(t) for t in text.split(",")]
+    except ValueError:
+        counts = []
+    if not counts or min(counts) < 1:
+        raise argparse.ArgumentTypeError("%r: expected thread counts like 1,2,4" % text)
+    return counts
+
+
+def write_json(path, results):
+    """Every run so far, replaced whole (a reader never sees half a file)."""
+    tmp = path + ".part"
+    with open(tmp, "w") as f:
+        json.dump(results, f, indent=1)
+    os.replace(tmp, path)
 
 
 def call(argv):
@@ -190,11 +213,21 @@ def main():
     ap.add_argument("--stretch-mm", type=float, default=0.3)
     ap.add_argument("--repeat", type=int, default=3, help="0: make the cached states only")
     ap.add_argument("--variant", type=parse_variant, action="append", default=[])
+    ap.add_argument("--threads", type=thread_list, default=[],
+                    help="1,2,4,...: variants tT, T threads per module taking turns")
+    ap.add_argument("--overlap-threads", type=thread_list, default=[],
+                    help="8,16,...: variants oT, T threads per module overlapping")
     ap.add_argument("--cache", default=default_cache())
     ap.add_argument("--json", help="write every run's figures here")
     ap.add_argument("--coupler", default=os.path.join(ROOT, "build", "bin", "coupler"))
     args = ap.parse_args()
-    variants = args.variant or [("scene", [])]
+    variants = args.variant + [
+        ("t%d" % t, ["dem.threads=%d" % t, "fluid.threads=%d" % t, "coupling.overlap=off"])
+        for t in args.threads] + [
+        ("o%d" % t, ["dem.threads=%d" % t, "fluid.threads=%d" % t, "coupling.overlap=on"])
+        for t in args.overlap_threads]
+    variants = variants or [("scene", [])]
+    overlapping = {"o%d" % t for t in args.overlap_threads}
     results = []
     print("%-9s %6s %-8s %8s %10s  split of the wall" % ("scene", "depth", "variant", "ms/step",
                                                        "p-steps/s"))
@@ -206,15 +239,19 @@ def main():
         depths = [0.0] if name == "dry" else [float(d) for d in args.depth.split(",")]
         for depth in depths:
             state, text = cached_state(args.coupler, scene, depth, args.at_mm, args.cache)
-            rows = {v: [] for v, _ in variants}
+            # A dry scene has no fluid and nothing to overlap: its oT would repeat its tT.
+            runs = [(v, sets) for v, sets in variants if name != "dry" or v not in overlapping]
+            rows = {v: [] for v, _ in runs}
             for _ in range(args.repeat):
-                for v, sets in variants:
+                for v, sets in runs:
                     if name == "dry":
                         sets = [s for s in sets if not s.startswith(("fluid.", "coupling."))]
                     row = stretch(args.coupler, state, text, args.at_mm, args.stretch_mm, sets)
                     rows[v].append(row)
                     results.append(dict(row, scene=scene, depth_m=depth, variant=v))
                     print("%-9s %6g %-8s %s" % (name, depth, v, describe(row)), flush=True)
+                    if args.json:
+                        write_json(args.json, results)
             for v, rs in rows.items():
                 if not rs:  # --repeat 0: the states only
                     continue
@@ -225,8 +262,7 @@ def main():
                 print("%-9s %6g %-8s   %s" % (name, depth, v, ", ".join(
                     "%s %.3f" % (k, 1e3 * t) for k, t in parts.items())))
     if args.json:
-        with open(args.json, "w") as f:
-            json.dump(results, f, indent=1)
+        write_json(args.json, results)
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ the scaling model, run as a user runs them (on the reduced scenes, in seconds).
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import unittest
@@ -57,12 +58,15 @@ class RealCut(unittest.TestCase):
                       first.stdout)
         self.assertEqual(len(os.listdir(cache)), 1)
         self.assertIn("fluid.passes", first.stdout)  # the per-step medians of every part
+        # The same variants by their shorthand, and one overlapping.
+        argv = argv[:argv.index("--variant")] + ["--threads", "1,2", "--overlap-threads", "2"]
         second = subprocess.run(argv, capture_output=True, text=True, timeout=240)
         self.assertEqual(second.returncode, 0, second.stdout + second.stderr)
         self.assertNotIn("making the state", second.stdout)  # the cached one
         with open(out) as f:
             runs = json.load(f)
-        self.assertEqual(sorted(r["variant"] for r in runs), ["t1", "t2"])
+        self.assertEqual(sorted(r["variant"] for r in runs), ["o2", "t1", "t2"])
+        self.assertFalse(os.path.exists(out + ".part"))
         for r in runs:
             # 0.5 mm at 1 m/s: 0.5 ms of the cut, thousands of steps.
             self.assertGreater(r["steps"], 1000)
@@ -73,9 +77,21 @@ class RealCut(unittest.TestCase):
             self.assertLessEqual(r["dem_busy_s"] + r["fluid_busy_s"], r["wall_s"] * 1.001)
             self.assertGreaterEqual(r["own_s"], 0.0)
         model = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "bench", "scaling_model.py"),
-                                out, "--cores", "2,64"], capture_output=True, text=True)
+                                out, "--cores", "2,64", "--check", "t2:2,t4:4"],
+                               capture_output=True, text=True)
         self.assertEqual(model.returncode, 0, model.stderr)
         self.assertIn("64 cores:", model.stdout)
+        # Held against what was measured. t2 is one of the two points the model is fitted to, so
+        # it agrees but for a negative rest (waits shorter than the clocks' overlap), taken as 0.
+        m = re.search(r"t2 on 2 threads: model ([0-9.]+) ms/step, measured ([0-9.]+) "
+                      r"\(model/measured ([0-9.]+)\)", model.stdout)
+        self.assertIsNotNone(m, model.stdout)
+        self.assertAlmostEqual(float(m.group(3)), 1.0, delta=0.05)
+        self.assertIn("t4: not measured", model.stdout)
+        bad = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "bench", "bench_real_cut.py"),
+                              "--threads", "0,2"], capture_output=True, text=True)
+        self.assertEqual(bad.returncode, 2)
+        self.assertIn("expected thread counts", bad.stderr)
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 // DEM step throughput on the benchmark packing (bench/data/pack57k.txt, 57,636 discs): the
 // bonded block being cut by the chisel, with bond shear springs and break checks on, for 1, 2 and
-// more threads, up to the machine's. Reports particle-steps per second, the figure bench/data/README.md gives for
-// LAMMPS, LIGGGHTS and YADE on the same packing (k_n 1e10, k_t 2.5e10 Pa, friction 1, dt 2e-8 s).
+// more threads, up to the machine's. Reports particle-steps per second, the figure
+// bench/data/README.md gives for LAMMPS, LIGGGHTS and YADE on the same packing (k_n 1e10, k_t
+// 2.5e10 Pa, friction 1, dt 2e-8 s).
 //
 // Run: build/bin/bench_dem [--packing PATH]   (default: bench/data/pack57k.txt)
 #include <benchmark/benchmark.h>
@@ -91,11 +92,11 @@ void thread_counts(benchmark::internal::Benchmark* b) {
 void BM_BondedBlockCutting(benchmark::State& state) {
   time_steps(state, *bonded_block_with_tool(static_cast<int>(state.range(0))));
 }
-BENCHMARK(BM_BondedBlockCutting)->Apply(thread_counts)->UseRealTime()->Unit(benchmark::kMillisecond)
-    ->MinTime(3.0);
+BENCHMARK(BM_BondedBlockCutting)->Apply(thread_counts)->UseRealTime()
+    ->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
-// The dynamic scenes' model, dashpots of zeta 0.1, on 1, 2, ... threads (thread_counts): what bench_whole_cut.py
-// holds a dry dynamic cut's whole-run rate against.
+// The dynamic scenes' model, dashpots of zeta 0.1, on 1, 2, ... threads (thread_counts): what
+// bench_whole_cut.py holds a dry dynamic cut's whole-run rate against.
 void BM_BondedBlockCuttingViscous(benchmark::State& state) {
   time_steps(state, *bonded_block_with_tool(static_cast<int>(state.range(0)), 1));
 }

@@ -15,10 +15,10 @@ effective scene. Each measurement copies it and continues it with `coupler resum
 --stretch-mm more. Variants change what a resume may change (the thread counts,
 coupling.overlap), e.g. `--variant turns:coupling.overlap=off --variant overlap:coupling.overlap=on`;
 the runs of one scene alternate between the variants, --repeat times, because this machine's speed
-moves by tens of percent from one hour to the next. `--threads 1,2,4` adds the variants t1, t2, t4
-(T threads for each module, taking turns: what bench/scaling_model.py reads), `--overlap-threads
-8,16` the variants o8, o16 (T each, overlapping; saturated scenes only). --json is written after
-every run, so a call stopped part-way keeps what it measured.
+moves by tens of percent from one hour to the next. `--threads 1,2,4` adds the variants t1, t2,
+t4 (T threads for each module, taking turns: what bench/scaling_model.py reads),
+`--overlap-threads 8,16` the variants o8, o16 (T each, overlapping; saturated scenes only).
+--json is written after every run, so a call stopped part-way keeps what it measured.
 
 Per run it prints, from the resumed run's summary.json (the stretch only):
   ms/step        wall per DEM step

@@ -92,8 +92,8 @@ def write_json(path, results):
     os.replace(tmp, path)
 
 
-def call(argv):
-    p = subprocess.run(argv, capture_output=True, text=True)
+def call(argv, cwd=None):
+    p = subprocess.run(argv, capture_output=True, text=True, cwd=cwd)
     if p.returncode != 0:
         sys.exit("bench_real_cut: %s failed (%d):\n%s" % (" ".join(argv), p.returncode,
                                                           p.stderr[-3000:]))
@@ -101,10 +101,12 @@ def call(argv):
 
 
 def effective_scene(coupler, scene, sets):
-    argv = [coupler, "validate", os.path.join(ROOT, scene), "--print"]
+    """The scene as the coupler runs it, named by its path in the tree (`scene`, relative to the
+    checkout): the cache's key then holds in any checkout, and the states travel with it."""
+    argv = [os.path.abspath(coupler), "validate", scene, "--print"]
     for s in sets:
         argv += ["--set", s]
-    return call(argv)
+    return call(argv, cwd=ROOT)
 
 
 def field(text, block, name):

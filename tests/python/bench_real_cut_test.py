@@ -15,7 +15,8 @@ import unittest
 import harness  # tests/python/harness.py: the command line
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-import scaling_model  # bench/ is on PYTHONPATH (tests/CMakeLists.txt)
+import bench_real_cut  # bench/ is on PYTHONPATH (tests/CMakeLists.txt)
+import scaling_model
 
 
 class ScalingModel(unittest.TestCase):
@@ -42,6 +43,14 @@ class ScalingModel(unittest.TestCase):
 
 
 class RealCut(unittest.TestCase):
+    def test_the_cache_key_holds_in_any_checkout(self):
+        # The effective scene is named by its path in the tree, not where the tree lies, so the
+        # cached states' keys (and the states) hold for a checkout elsewhere.
+        text = bench_real_cut.effective_scene(
+            os.path.relpath(ARGS.coupler), "cases/cutting/saturated_reduced_long.pbtxt", [])
+        self.assertTrue(text.startswith("cases/cutting/saturated_reduced_long.pbtxt: ok"), text[:200])
+        self.assertNotIn(ROOT, text)
+
     def test_the_state_is_made_once_and_the_stretch_split(self):
         tmp = os.path.join(ARGS.tmp, "bench_real_cut")
         shutil.rmtree(tmp, ignore_errors=True)

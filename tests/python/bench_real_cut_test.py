@@ -48,7 +48,8 @@ class RealCut(unittest.TestCase):
         # cached states' keys (and the states) hold for a checkout elsewhere.
         text = bench_real_cut.effective_scene(
             os.path.relpath(ARGS.coupler), "cases/cutting/saturated_reduced_long.pbtxt", [])
-        self.assertTrue(text.startswith("cases/cutting/saturated_reduced_long.pbtxt: ok"), text[:200])
+        self.assertTrue(text.startswith("cases/cutting/saturated_reduced_long.pbtxt: ok"),
+                        text[:200])
         self.assertNotIn(ROOT, text)
 
     def test_the_state_is_made_once_and_the_stretch_split(self):

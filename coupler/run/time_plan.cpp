@@ -102,7 +102,8 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
                         " s, above the " + binding->module + " limit " + binding->name + " (" +
                         fmt(binding->dt_max_s) + " s) by " +
                         fmt(plan.coupling_interval * plan.dt_s / binding->dt_max_s) +
-                        "x; use coupling.interval <= " + fmt(max_n));
+                        "x; use coupling.interval <= " + fmt(max_n) +
+                        (binding->remedy.empty() ? "" : ", or " + binding->remedy));
       }
     } else {
       // Stable up to max_n, accurate (docs/accuracy.md) at a fraction of it; without a fluid
@@ -113,6 +114,8 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
                     1.0, std::floor(scene.coupling().interval_fraction() * std::min(max_n, 1e6))))
               : 1;
     }
+    plan.extrapolate_fluid_force =
+        plan.coupling_interval > 1 && scene.coupling().fluid_force() == "extrapolated";
     plan.report.push_back(
         "chosen coupling interval N = " + std::to_string(plan.coupling_interval) +
         ", fluid step " + fmt(plan.coupling_interval * plan.dt_s) + " s" +
@@ -122,6 +125,10 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
                          "; coupling.interval_fraction " +
                          fmt(scene.coupling().interval_fraction()) + " of it, docs/accuracy.md)"
                                          : " (no fluid limit: the paper's N = 1)"));
+    if (plan.extrapolate_fluid_force) {
+      plan.report.push_back("between exchanges the DEM extrapolates the fluid's force from its "
+                            "last two values (coupling.fluid_force \"extrapolated\")");
+    }
   }
   // A step count a double holds exactly, and one a run could finish: 2^53 steps would take years.
   const double steps = std::ceil(time.end_time_s() / plan.dt_s - 1e-9);
@@ -148,12 +155,22 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
   return plan;
 }
 
+std::vector<Limit> applicable_fluid_limits(const rockcut::Scene& scene, std::vector<Limit> limits) {
+  const wire::LimitKind other = scene.coupling().fluid_force() == "extrapolated"
+                                    ? wire::LIMIT_KIND_PORE_FLUID_STIFFNESS
+                                    : wire::LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED;
+  std::erase_if(limits, [&](const Limit& l) { return l.kind == other; });
+  return limits;
+}
+
 double pore_fluid_stiffness_limit_s(const std::vector<Limit>& limits) {
-  double dt_s = 0.0;
   for (const Limit& l : limits) {
-    if (l.kind == wire::LIMIT_KIND_PORE_FLUID_STIFFNESS) dt_s = l.dt_max_s;
+    if (l.kind == wire::LIMIT_KIND_PORE_FLUID_STIFFNESS ||
+        l.kind == wire::LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED) {
+      return l.dt_max_s;
+    }
   }
-  return dt_s;
+  return 0.0;
 }
 
 }  // namespace rockcut::coupler

@@ -37,6 +37,9 @@ struct TimePlan {
   std::string binding;             ///< which limit or setting fixed dt
   /// The DEM computes its forces before answering its kinematics (run/overlap_choice.hpp).
   bool forces_before_reply = false;
+  /// The DEM extrapolates the fluid's force between exchanges (Coupling.fluid_force
+  /// "extrapolated" and N > 1; at N = 1 there is nothing between exchanges).
+  bool extrapolate_fluid_force = false;
   std::vector<std::string> report; ///< one line per limit and choice, printed at start-up
 };
 
@@ -47,8 +50,14 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
 /// The smallest of `limits` [s], or 0 when there is none.
 double smallest_limit_s(const std::vector<Limit>& limits);
 
-/// The pore-fluid stiffness limit among `limits` (LIMIT_KIND_PORE_FLUID_STIFFNESS, whatever its
-/// name) [s], or 0 when none is reported: the expected coupling-lag error is read against it.
+/// The fluid limits that bound the scene: of the pore fluid's two stiffness limits, the one for
+/// the way its Coupling.fluid_force applies the force between exchanges (held or extrapolated).
+std::vector<Limit> applicable_fluid_limits(const rockcut::Scene& scene, std::vector<Limit> limits);
+
+/// The pore-fluid stiffness limit among `limits` (LIMIT_KIND_PORE_FLUID_STIFFNESS or
+/// LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED, whatever its name, the first of them) [s], or 0
+/// when none is reported: the expected coupling-lag error is read against it. Pass the applicable
+/// limits.
 double pore_fluid_stiffness_limit_s(const std::vector<Limit>& limits);
 
 }  // namespace rockcut::coupler

@@ -25,7 +25,8 @@ RunSession::RunSession(const RunOptions& options, scene::LoadedScene scene,
 void RunSession::assemble() {
   modules_.start();
   modules_.init();
-  plan_ = plan_time(scene_, modules_.dem_limits(), modules_.fluid_limits(), scene_.has_fluid());
+  const std::vector<Limit> fluid_limits = applicable_fluid_limits(scene_, modules_.fluid_limits());
+  plan_ = plan_time(scene_, modules_.dem_limits(), fluid_limits, scene_.has_fluid());
   if (const auto& overlap = modules_.overlap()) {
     plan_.forces_before_reply = !overlap->overlap;
     plan_.report.push_back(overlap->report);
@@ -33,7 +34,7 @@ void RunSession::assemble() {
   const RunModule* fluid = modules_.fluid();
   const ObserverInputs inputs{modules_.dem().label(),
                               fluid && fluid->provides(std::string(wire::field::kPressure)),
-                              modules_.dem_limits(), modules_.fluid_limits(), options_.module_dir};
+                              modules_.dem_limits(), fluid_limits, options_.module_dir};
   register_observers(scene_, plan_, inputs, observers_);
   // A verification check's fields go into every frame.
   const VerificationCheck* verification = observers_.find<VerificationCheck>();

@@ -185,6 +185,11 @@ void DemSystem::save_state(StateArchive& a) const {
   a.put_scalar("neighbour_rebuilds", static_cast<double>(rebuilds_));
   a.put_scalar("internal_forces_current", internal_forces_current_ ? 1.0 : 0.0);
   a.put_scalar("has_body_forces", has_body_forces_ ? 1.0 : 0.0);
+  if (extrapolation_.on && extrapolation_.has_last) {  // only where the scene extrapolates
+    a.put("fluid_force_rate_n_per_m_s", extrapolation_.rate, 2);
+    a.put("fluid_force_at_exchange_n_per_m", extrapolation_.last_force, 2);
+    a.put_scalar("fluid_force_exchange_time_s", extrapolation_.last_time_s);
+  }
 }
 
 void DemSystem::load_state(const StateArchive& a) {
@@ -246,6 +251,16 @@ void DemSystem::assign_state(const StateArchive& a) {
   rebuilds_ = a.scalar_as<std::uint64_t>("neighbour_rebuilds");
   internal_forces_current_ = a.scalar("internal_forces_current") != 0.0;
   has_body_forces_ = a.scalar("has_body_forces") != 0.0;
+  // An extrapolated run's line through its last two exchanges; a state without one (held
+  // forces) starts the line afresh at the next exchange if the run extrapolates.
+  extrapolation_ = FluidForceExtrapolation{};
+  if (a.has("fluid_force_rate_n_per_m_s")) {
+    extrapolation_.on = true;
+    extrapolation_.has_last = true;
+    a.get("fluid_force_rate_n_per_m_s", extrapolation_.rate, 2 * n);
+    a.get("fluid_force_at_exchange_n_per_m", extrapolation_.last_force, 2 * n);
+    extrapolation_.last_time_s = a.scalar("fluid_force_exchange_time_s");
+  }
   // The thread shares of the restored lists, as after the rebuild that made them.
   update_force_windows();
 }

@@ -154,9 +154,11 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
   double* q = particles_.torque.data();
   const double* inv_i = particles_.inv_inertia.data();
   const double h = 0.5 * dt;
-  const double* fe = particles_.external_force.data();
+  double* fe = particles_.external_force.data();
   const double* inv_m = particles_.inv_mass.data();
   const double* fd = damping_force_.empty() ? nullptr : damping_force_.data();
+  // The extrapolated external force moves on to t^{n+1} after its F^n half of the work.
+  const double* fr = extrapolation_.rate.empty() ? nullptr : extrapolation_.rate.data();
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
   const bool body = has_body_forces_;
   double vmax2 = 0.0, work = 0.0, gravity = 0.0, damping = 0.0;
@@ -176,6 +178,10 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
     if (body) {
       work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * 0.5 * dt;
       gravity += (gx * vx + gy * vy) / inv_m[i] * 0.5 * dt;
+    }
+    if (fr) {
+      fe[2 * i] += fr[2 * i] * dt;
+      fe[2 * i + 1] += fr[2 * i + 1] * dt;
     }
     if (fd) damping -= (fd[3 * i] * vx + fd[3 * i + 1] * vy + fd[3 * i + 2] * w[i]) * 0.5 * dt;
     if (reset_forces) {  // F^n has been used: start F^{n+1} from gravity in the same pass
@@ -524,6 +530,7 @@ void DemSystem::begin_step(double dt) {
 
 void DemSystem::finish_step(double dt, std::span<const double> external) {
   if (!in_split_step_) throw std::logic_error("finish_step without begin_step");
+  extrapolation_.take(external, time_s_);
   hold_external_force(external);
   if (!internal_forces_current_) compute_internal_forces();
   finish_forces(settings_.prescribed_motion ? 0.0 : dt);
@@ -550,10 +557,21 @@ void DemSystem::add_membrane_load(MembraneLoad load) {
   has_body_forces_ = has_body_forces_ || !membrane_.particles.empty();  // its work is booked
   // The fluid's part of the held force stays; the membrane is added on top by the hold.
   std::vector<double> held = particles_.external_force;
-  set_external_force(held);
+  hold_and_reevaluate(held);
+}
+
+void DemSystem::extrapolate_external_force(bool on) {
+  if (on == extrapolation_.on) return;
+  extrapolation_ = FluidForceExtrapolation{};
+  extrapolation_.on = on;
 }
 
 void DemSystem::set_external_force(std::span<const double> external) {
+  extrapolation_.take(external, time_s_);
+  hold_and_reevaluate(external);
+}
+
+void DemSystem::hold_and_reevaluate(std::span<const double> external) {
   hold_external_force(external);
   // At rest (t = 0) a^n is re-evaluated from scratch; inside a split step the internal forces at
   // x^{n+1} may already have been computed while the fluid worked.

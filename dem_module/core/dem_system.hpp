@@ -12,6 +12,7 @@
 #include "core/cell_grid.hpp"
 #include "core/contact_list.hpp"
 #include "core/energy.hpp"
+#include "core/fluid_force_extrapolation.hpp"
 #include "core/force_buffers.hpp"
 #include "core/particles.hpp"
 #include "wire/phase_clock.hpp"
@@ -81,6 +82,10 @@ class DemSystem {
   void finish_step(double dt, std::span<const double> external);
   /// Replaces the held external force and re-evaluates a^n without moving (used at t = 0).
   void set_external_force(std::span<const double> external);
+  /// From the next external force on, extrapolate it between exchanges instead of holding it
+  /// (core/fluid_force_extrapolation.hpp); off: hold it (and drop the rate).
+  void extrapolate_external_force(bool on);
+  bool external_force_extrapolated() const { return extrapolation_.on; }
   /// Holds the y velocity of `particles` at velocity_y_m_s from now on (dry scenes: an external y
   /// force on them is cancelled too). Returns the group's index for clamped_group().
   /// `fixed`: held at rest in x and spin too (velocity_y_m_s 0), the rock mass under a cut block.
@@ -151,6 +156,8 @@ class DemSystem {
   void finish_forces(double kick_dt);
   /// Copies the fluid force into the held external force, and adds the membrane's load on top.
   void hold_external_force(std::span<const double> external);
+  /// Holds `external` and re-evaluates a^n without moving.
+  void hold_and_reevaluate(std::span<const double> external);
   void rebuild_neighbours();
   /// The same, called by every thread t of a team of `threads` (inside a parallel region): the
   /// contact search and the force windows shared out, the rest on one thread.
@@ -179,6 +186,7 @@ class DemSystem {
   std::vector<BondBreak> breaks_;
   std::vector<std::uint32_t> freed_pairs_;
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
+  FluidForceExtrapolation extrapolation_;  ///< the external force's rate between exchanges
   std::vector<ClampedGroup> clamped_;
   std::vector<WallServo> servos_;
   MembraneLoad membrane_;

@@ -181,6 +181,7 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
     throw std::runtime_error("dem_module: stopped by the " + stopped_by_ +
                              " guard; only frames can be asked for");
   }
+  s.extrapolate_external_force(advance.extrapolate_fluid_force());
   if (advance.apply_forces_first()) {
     // The held ApplyForces of the last exchange (no output was due at its step). The guards run
     // on the completed step at the same cadence as inside a long Advance.

@@ -14,7 +14,7 @@
 namespace rockcut::fluid {
 
 /// What a limit bounds (sent as wire.proto's LimitKind): the coupler picks limits by it.
-enum class LimitKind { other, diffusion, pore_fluid_stiffness };
+enum class LimitKind { other, diffusion, pore_fluid_stiffness, pore_fluid_stiffness_extrapolated };
 
 /// Largest stable step of a model's own integrator.
 struct StabilityLimit {

@@ -58,10 +58,21 @@ std::vector<StabilityLimit> PorePressureModel::limits() const {
     formula += "C alpha_d sqrt(m_min / (alpha M)) with C = " + fmt(kFluidStiffnessC) +
                ", local damping alpha_d = " + fmt(params_.local_damping);
   }
-  out.push_back({"pore_fluid_stiffness", local_dt + viscous_dt,
+  const double held_dt = local_dt + viscous_dt;
+  out.push_back({"pore_fluid_stiffness", held_dt,
                  formula + ", m_min = " + fmt(m_min) + " kg/m, alpha M = " + fmt(stiffness) +
                      " Pa; binds only N > 1",
-                 /*lag_only=*/true, /*remedy=*/{}, LimitKind::pore_fluid_stiffness});
+                 /*lag_only=*/true, /*remedy=*/"use coupling.fluid_force \"extrapolated\"",
+                 LimitKind::pore_fluid_stiffness});
+  // Without contact stiffness no grain vibrates on a contact: the held limit stands.
+  const double k_n = params_.normal_stiffness_pa;
+  const double extrapolated_dt =
+      k_n > 0.0 ? kFluidExtrapolatedC * std::cbrt(held_dt * m_min / k_n) : held_dt;
+  out.push_back({"pore_fluid_stiffness_extrapolated", extrapolated_dt,
+                 "extrapolated fluid force: C_x cbrt(dt_held m_min / k_n) with C_x = " +
+                     fmt(kFluidExtrapolatedC) + ", dt_held = " + fmt(held_dt) + " s, k_n = " +
+                     fmt(k_n) + " Pa; binds only N > 1",
+                 /*lag_only=*/true, /*remedy=*/{}, LimitKind::pore_fluid_stiffness_extrapolated});
   return out;
 }
 

@@ -34,9 +34,29 @@ namespace rockcut::fluid::sp {
 /// each constant a factor 2 below the smallest unstable step measured at 2000 m, where nothing
 /// cavitates (local: alpha_d 0.7; viscous: zeta 0.1 on the reduced cut with a fixed base, N = 4
 /// stable, N = 6 and 7 stopped by the energy guard: C_v = 0.5 x 9.54e-7 s / (0.1 x 6.39e-6 s);
-/// docs/model.md, "Damping"). It binds only N > 1: N = 1 is always allowed, also without damping.
+/// docs/model.md, "Damping"; N = 5, 7.95e-7 s, was stopped too, 14 ms into the cut, so C_v is
+/// 1.66 below the smallest unstable step). It binds only N > 1: N = 1 is always allowed, also
+/// without damping.
 inline constexpr double kFluidStiffnessC = 1.5;
 inline constexpr double kFluidViscousC = 0.75;
+
+/// Extrapolated fluid force (Coupling.fluid_force "extrapolated"): between exchanges the DEM
+/// applies F^m + s (F^m - F^{m-1}) / dt_f at s after the exchange. For a grain vibrating at
+/// omega, the error of that line is F'' s (s + dt_f) / 2 (a stiffness, no work over a period)
+/// plus F''' s (dt_f^2 - s^2) / 6, whose work averages to a negative damping of
+/// k_f omega^2 dt_f^3 / 24 where the held force's is k_f dt_f / 2. The damping the held limit
+/// allows for, worth k_f dt_held / 2, then bounds
+///   dt_f^3 <= 12 dt_held / omega^2, omega^2 = k_n / m_min (the lightest grain on its contact),
+/// so dt_f <= kFluidExtrapolatedC * cbrt(dt_held m_min / k_n), with dt_held the held limit
+/// above (which carries the measured constants and both dampings). The constant is a factor 2
+/// below the smallest unstable step measured at 2000 m: on the reduced cut with zeta 0.1 and the
+/// base held, as for C_v, N = 6, 8 and 9 ran 20 ms and N = 10, 12, 16 and 24 were stopped by the
+/// energy guard: C_x = 0.5 x 1.59e-6 s / cbrt(4.79e-7 s x 5.64e-3 kg/m / 7.25e9 Pa) = 1.10
+/// (docs/model.md, "The coupling interval and the pore fluid's stiffness"). Under local damping
+/// the line is worse than the held force, and the formula says so: on the paper's reduced cut at
+/// 2000 m (alpha_d 0.7) N = 14 ran and N = 20 (3.5 us) was stopped extrapolated, where N = 20
+/// ran held; the formula gives 1.37 us there, 2.6 times below the unstable step.
+inline constexpr double kFluidExtrapolatedC = 1.10;
 
 /// A local geometry refresh (docs/model.md, "Reusing the geometry") moves the particles that
 /// have moved more than this fraction of fluid.geometry_refresh_distance, not only the one that

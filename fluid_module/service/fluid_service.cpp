@@ -35,6 +35,8 @@ wire::LimitKind wire_kind(LimitKind kind) {
   switch (kind) {
     case LimitKind::diffusion: return wire::LIMIT_KIND_FLUID_DIFFUSION;
     case LimitKind::pore_fluid_stiffness: return wire::LIMIT_KIND_PORE_FLUID_STIFFNESS;
+    case LimitKind::pore_fluid_stiffness_extrapolated:
+      return wire::LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED;
     case LimitKind::other: break;
   }
   return wire::LIMIT_KIND_UNSPECIFIED;

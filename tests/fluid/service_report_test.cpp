@@ -4,6 +4,8 @@
 // successive positions instead of asking the DEM for it.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <string>
 #include <vector>
 
@@ -191,11 +193,13 @@ InitAnswer init_with(const wire::FluidConfig& config) {
   return init_with(init);
 }
 
-// The pore-fluid stiffness limit of an InitReply, found by its kind; -1 when there is none.
-double stiffness_limit_s(const wire::InitReply& reply) {
+// The pore-fluid stiffness limit of an InitReply, found by its kind (held, or with the
+// extrapolated force); -1 when there is none.
+double stiffness_limit_s(const wire::InitReply& reply,
+                         wire::LimitKind kind = wire::LIMIT_KIND_PORE_FLUID_STIFFNESS) {
   double dt_s = -1.0;
   for (const wire::StabilityLimit& l : reply.limits()) {
-    if (l.kind() == wire::LIMIT_KIND_PORE_FLUID_STIFFNESS) dt_s = l.dt_max_s();
+    if (l.kind() == kind) dt_s = l.dt_max_s();
   }
   return dt_s;
 }
@@ -277,6 +281,37 @@ TEST(FluidService, TakesTheSolidPropertiesFromTheProtocol) {
   EXPECT_EQ(std::count(flipped.reply.needs().begin(), flipped.reply.needs().end(),
                        wire::field::kWallSegments),
             walls.solid().seals_at_walls() ? 1 : 0);
+
+  // With the force extrapolated between exchanges the limit is C_x cbrt(dt_held m_min / k_n).
+  // Under dashpots (zeta 0.1 on k_n 7.25 GPa, no local damping) it is above the held one; 8 times
+  // the contact stiffness makes it 1/sqrt(2) times (dt_held goes as sqrt(k_n)), 4 times the
+  // density 2 times (dt_held and m_min), and without contact stiffness it is the held one.
+  constexpr auto kExtrapolated = wire::LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED;
+  wire::FluidConfig dashpots = base;
+  dashpots.mutable_solid()->set_local_damping(0.0);
+  dashpots.mutable_solid()->set_viscous_damping_ratio(0.1);
+  dashpots.mutable_solid()->set_normal_stiffness_pa(7.25e9);
+  const InitAnswer viscous = init_with(dashpots);
+  const double dx0 = stiffness_limit_s(viscous.reply, kExtrapolated);
+  ASSERT_GT(dx0, stiffness_limit_s(viscous.reply));
+  wire::FluidConfig stiffer = dashpots;
+  stiffer.mutable_solid()->set_normal_stiffness_pa(8.0 * 7.25e9);
+  EXPECT_NEAR(stiffness_limit_s(init_with(stiffer).reply, kExtrapolated) / dx0, std::sqrt(0.5),
+              1e-14);
+  wire::FluidConfig heavier_dashpots = dashpots;
+  heavier_dashpots.mutable_solid()->set_grain_density_kg_m3(4.0 * base.solid().grain_density_kg_m3());
+  EXPECT_NEAR(stiffness_limit_s(init_with(heavier_dashpots).reply, kExtrapolated) / dx0, 2.0, 1e-14);
+  // Under local damping (alpha_d 0.7, no dashpots) the line does worse than the held force.
+  ASSERT_EQ(base.solid().viscous_damping_ratio(), 0.0);
+  wire::FluidConfig local = base;
+  local.mutable_solid()->set_normal_stiffness_pa(7.25e9);
+  const InitAnswer local_answer = init_with(local);
+  EXPECT_LT(stiffness_limit_s(local_answer.reply, kExtrapolated),
+            stiffness_limit_s(local_answer.reply));
+  wire::FluidConfig no_contacts = base;
+  no_contacts.mutable_solid()->set_normal_stiffness_pa(0.0);
+  EXPECT_EQ(stiffness_limit_s(init_with(no_contacts).reply, kExtrapolated), dt0);
+  EXPECT_EQ(stiffness_limit_s(init_with(prescribed).reply, kExtrapolated), -1.0);
 
   // The diffusion limit is typed too.
   bool diffusion = false;

@@ -32,6 +32,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "mu_r: rolling resistance, an elastic-plastic rolling spring of stiffness k_s R_r^2 on every contact and disc-wall or disc-tool contact whose moment is limited to mu_r R_r F_n, with R_r = r_i r_j / (r_i + r_j) (r_i against a wall) (Iwashita & Oda 1998; Ai et al. 2011). 0: none."},
     {"rockcut.ContactParameters.shear_stiffness_pa",
      "k_s: shear stiffness of the incremental tangential spring, N/m per metre of thickness (Pa)."},
+    {"rockcut.Coupling.fluid_force",
+     "How the DEM applies the fluid's force on the N - 1 steps between two exchanges (N > 1; at N = 1 there are none and both give the same bits). `held`: the last force, constant (the lag of up to N dt is a negative damping k_f N dt / 2 the DEM's damping must outweigh). `extrapolated`: the last force plus its rate over the last fluid step times the time since, F^m + (t - t_m) (F^m - F^{m-1}) / (t_m - t_{m-1}), which removes the lag's first-order error and its energy; the pore fluid's stiffness then allows a larger N (docs/model.md, \"The coupling interval and the pore fluid's stiffness\")."},
     {"rockcut.Coupling.interval",
      "DEM steps per fluid step (N). Leave it out to let the coupler choose it from the stability limits; a value above a limit is refused."},
     {"rockcut.Coupling.interval_fraction",

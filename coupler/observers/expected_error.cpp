@@ -80,7 +80,8 @@ std::filesystem::path error_model_path(const std::filesystem::path& program_dir)
 
 std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
                                            const std::string& damping,
-                                           std::vector<std::string>* studied) {
+                                           std::vector<std::string>* studied,
+                                           const std::string& fluid_force) {
   std::ifstream in(csv);
   if (!in) bad(csv, 0, std::string("cannot read the accuracy study's table: ") + std::strerror(errno));
   ErrorModel model;
@@ -90,7 +91,7 @@ std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
       {"h_per_diameter", &model.h_per_diameter},
       {"size_scale", &model.size_scale}};
   int column_ladder = -1, column_value = -1, column_error = -1, column_damping = -1,
-      column_force = -1;
+      column_force = -1, column_fluid_force = -1;
   std::vector<std::string> models;
   int rows_of_damping = 0, line_no = 0;
   for (std::string line; std::getline(in, line);) {
@@ -104,13 +105,14 @@ std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
         if (cells[c] == "force_error") column_error = c;
         if (cells[c] == "damping") column_damping = c;
         if (cells[c] == "force") column_force = c;
+        if (cells[c] == "fluid_force") column_fluid_force = c;
       }
       if (column_ladder < 0 || column_value < 0 || column_error < 0)
         bad(csv, line_no, "the header must name the columns ladder, value and force_error");
       continue;
     }
     const int needed = std::max({column_ladder, column_value, column_error, column_damping,
-                                 column_force});
+                                 column_force, column_fluid_force});
     if (static_cast<int>(cells.size()) <= needed)
       bad(csv, line_no, "expected " + std::to_string(needed + 1) + " columns or more");
     const std::string row_damping = column_damping < 0 ? "local" : cells[column_damping];
@@ -128,7 +130,16 @@ std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
                             parse_number(cells[column_error], csv, line_no, "force_error")};
     if (point.value <= 0.0 || point.force_error < 0.0)
       bad(csv, line_no, "a setting must be > 0 and its error >= 0");
+    // How the fluid's force is applied between exchanges matters only to the lag's ladder.
+    const std::string row_fluid_force =
+        column_fluid_force < 0 ? "held" : cells[column_fluid_force];
+    if (row_fluid_force != "held" && row_fluid_force != "extrapolated")
+      bad(csv, line_no, "unknown fluid_force \"" + row_fluid_force + "\": held or extrapolated");
+    if (row_fluid_force != "held" && ladder->second != &model.fluid_step_ratio)
+      bad(csv, line_no, "fluid_force \"" + row_fluid_force + "\" on the ladder " +
+                            ladder->first + ": only fluid_step_ratio depends on it");
     if (row_damping != damping) continue;
+    if (ladder->second == &model.fluid_step_ratio && row_fluid_force != fluid_force) continue;
     if (rows_of_damping++ == 0) {
       model.force = force;
     } else if (force != model.force) {
@@ -146,9 +157,12 @@ std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
     if (studied) *studied = models;
     return std::nullopt;
   }
-  for (const auto& [name, points] : ladders)
+  for (const auto& [name, points] : ladders) {
+    // A fluid_force the study has no ladder for leaves the lag's ladder empty: not covered.
+    if (points == &model.fluid_step_ratio && fluid_force != "held" && points->empty()) continue;
     if (points->size() < 2)
       bad(csv, line_no, std::string("the ladder ") + name + " needs two settings or more");
+  }
   return model;
 }
 
@@ -166,6 +180,10 @@ std::optional<double> expected_force_error(const ErrorModel& model, const CutSet
   double sum2 = 0.0;
   std::string text;
   for (const Part& p : parts) {
+    if (p.ladder.empty()) {
+      if (detail) *detail = std::string(p.name) + ": no measurement with the extrapolated force";
+      return std::nullopt;
+    }
     const std::optional<double> e = interpolate(p.ladder, p.value);
     if (!e) {
       if (detail) {
@@ -192,7 +210,8 @@ std::optional<std::string> expected_error_line(const rockcut::Scene& scene, cons
   std::optional<ErrorModel> model;
   std::vector<std::string> studied;
   try {
-    model = read_error_model(error_model_path(program_dir), damping, &studied);
+    model = read_error_model(error_model_path(program_dir), damping, &studied,
+                             plan.extrapolate_fluid_force ? "extrapolated" : "held");
   } catch (const std::runtime_error& e) {
     return std::string("accuracy   no estimate: ") + e.what();
   }

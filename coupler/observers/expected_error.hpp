@@ -17,7 +17,7 @@ namespace rockcut::coupler {
 /// The settings the study varies, as the scene and the time plan fix them.
 struct CutSettings {
   double dt_safety = 0.0;       ///< dt / the DEM's stability limit
-  double fluid_step_ratio = 0.0;  ///< N dt / the pore_fluid_stiffness limit (N = 1: 0)
+  double fluid_step_ratio = 0.0;  ///< N dt / the applicable pore-fluid stiffness limit (N = 1: 0)
   double h_per_diameter = 0.0;  ///< smoothing length / mean disc diameter
   double size_scale = 0.0;      ///< mean radius / that of saturated_reduced (1.2 mm)
 };
@@ -44,13 +44,17 @@ std::filesystem::path error_model_path(const std::filesystem::path& program_dir)
 /// Reads the study's rows for `damping` (a dem.damping.model) from its table (CSV: '#' comment
 /// lines, a header naming `ladder`, `value` and `force_error`, and optionally `damping` (a row
 /// without it is "local") and `force` ("mean" or "peak", the same on every row of one damping;
-/// "mean" without it), one row per setting). Empty when the table has no row for `damping`; then
-/// `studied`, if given, gets the damping models it has. Throws std::runtime_error "FILE:LINE:
-/// problem" on a file that cannot be read, a bad number, an unknown ladder or force, a ladder with
-/// fewer than two settings or settings out of order.
+/// "mean" without it), and optionally `fluid_force` (coupling.fluid_force, "held" without it;
+/// only fluid_step_ratio rows may be "extrapolated"), one row per setting). The fluid_step_ratio
+/// ladder is that of `fluid_force`; with "extrapolated" and no such rows it is empty (not covered).
+/// Empty when the table has no row for `damping`; then `studied`, if given, gets the damping
+/// models it has. Throws std::runtime_error "FILE:LINE: problem" on a file that cannot be read, a
+/// bad number, an unknown ladder, force or fluid_force, a ladder with fewer than two settings or
+/// settings out of order.
 std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
                                            const std::string& damping = "local",
-                                           std::vector<std::string>* studied = nullptr);
+                                           std::vector<std::string>* studied = nullptr,
+                                           const std::string& fluid_force = "held");
 
 /// One line for the start-up report: the expected relative error of the study's horizontal force
 /// (mean or peak, by the scene's damping) for each setting, and their root sum square; or why the

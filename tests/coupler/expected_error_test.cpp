@@ -164,6 +164,32 @@ TEST(ExpectedError, ABadTableIsNamedWithItsLine) {
                        "dt_safety,0.2,0,local,peak\n"),
               HasSubstr("table.csv:3: force \"peak\" where the rows of damping \"local\" before it "
                         "have \"mean\""));
+  // The fluid_force column: only the lag's ladder may depend on it.
+  EXPECT_THAT(error_of("ladder,value,force_error,fluid_force\ndt_safety,0.4,0.1,extrapolated\n"),
+              HasSubstr("table.csv:2: fluid_force \"extrapolated\" on the ladder dt_safety: only "
+                        "fluid_step_ratio depends on it"));
+  EXPECT_THAT(error_of("ladder,value,force_error,fluid_force\ndt_safety,0.4,0.1,implicit\n"),
+              HasSubstr("table.csv:2: unknown fluid_force \"implicit\": held or extrapolated"));
+  const fs::path forces = dir / "forces.csv";
+  std::string held_rows;
+  for (std::size_t at = 0, end; (end = good.find('\n', at)) != std::string::npos; at = end + 1)
+    held_rows += good.substr(at, end - at) + ",held\n";
+  std::ofstream(forces) << "ladder,value,force_error,fluid_force\n" + held_rows +
+                               "fluid_step_ratio,1,0.02,extrapolated\n"
+                               "fluid_step_ratio,0.2,0,extrapolated\n";
+  EXPECT_EQ(read_error_model(forces, "local", nullptr, "held")->fluid_step_ratio.front().force_error,
+            0.5);
+  const std::optional<ErrorModel> line = read_error_model(forces, "local", nullptr, "extrapolated");
+  ASSERT_EQ(line->fluid_step_ratio.size(), 2u);
+  EXPECT_EQ(line->fluid_step_ratio.front().force_error, 0.02);
+  EXPECT_EQ(line->dt_safety.front().force_error, 0.1);  // the held rows serve both
+  std::ofstream(forces) << "ladder,value,force_error\n" + good;
+  const std::optional<ErrorModel> unstudied = read_error_model(forces, "local", nullptr, "extrapolated");
+  ASSERT_TRUE(unstudied.has_value());
+  EXPECT_TRUE(unstudied->fluid_step_ratio.empty());
+  std::string why;
+  EXPECT_FALSE(expected_force_error(*unstudied, {0.2, 0.5, 2.0, 0.5}, &why).has_value());
+  EXPECT_THAT(why, HasSubstr("no measurement with the extrapolated force"));
   const fs::path missing = dir / "none.csv";
   try {
     read_error_model(missing);
@@ -220,6 +246,23 @@ TEST(ExpectedError, EachDampingModelHasItsOwnStudyAndForce) {
   const double e = *expected_force_error(*m, {0.2, 0.0, h_per_diameter, 1.0}, nullptr);
   EXPECT_THAT(*line, HasSubstr("expected error of the peak horizontal force about " +
                                std::to_string(static_cast<int>(std::lround(100 * e))) + " %"));
+  // The scene's own coupling, the force extrapolated at N = 4 (0.803 of its limit, read as the
+  // limit itself): the lag's part is its own ladder's.
+  ASSERT_EQ(dynamic.scene.coupling().fluid_force(), "extrapolated");
+  TimePlan extrapolated = plan;
+  extrapolated.coupling_interval = 4;
+  extrapolated.extrapolate_fluid_force = true;
+  const double extrapolated_limit_s = 4 * plan.dt_s / 0.803;
+  const auto line4 = expected_error_line(dynamic.scene, extrapolated, dem_limit_s,
+                                         extrapolated_limit_s, ROCKCUT_BIN_DIR);
+  ASSERT_TRUE(line4.has_value());
+  const std::optional<ErrorModel> m4 = read_error_model(kTable, "viscous", nullptr, "extrapolated");
+  ASSERT_TRUE(m4.has_value());
+  std::string detail;
+  const double e4 = *expected_force_error(*m4, {0.2, 0.803, h_per_diameter, 1.0}, &detail);
+  EXPECT_THAT(detail, HasSubstr("2 % from fluid step / stiffness limit 0.803"));
+  EXPECT_THAT(*line4, HasSubstr("about " + std::to_string(static_cast<int>(std::lround(100 * e4))) +
+                                " %"));
   // A damping model the study did not measure is named, with those it did.
   rockcut::Scene undamped = dynamic.scene;
   undamped.mutable_dem()->mutable_damping()->set_model("none");

@@ -4,8 +4,9 @@ studies' output: its errors are recomputed here from the studies' committed runs
 (the mean force): docs/accuracy/accuracy.csv (dt_safety, h, size and N = 14) and
 docs/accuracy/interval_0000m.csv (the paired differences of N = 10 ... 2). Dashpots (the peak
 force): docs/accuracy/viscous/accuracy.csv (dt_safety, h, size) and
-docs/accuracy/viscous/interval_0000m.csv (the paired difference of N = 3 over sixteen seeds). And
-rockcut accuracy writes a table of the same form.
+docs/accuracy/viscous/interval_0000m.csv (the paired difference of N = 3 over sixteen seeds) and,
+for the fluid's force extrapolated between exchanges, interval_extrapolated_0000m.csv (N = 4).
+And rockcut accuracy writes a table of the same form.
 
   tests/python/expected_error_table_test.py --coupler build/bin/coupler --tmp DIR
 """
@@ -59,9 +60,10 @@ class TableIsTheStudys(unittest.TestCase):
     def setUp(self):
         self.rows = read_table(TABLE)
 
-    def errors(self, ladder, damping="local"):
+    def errors(self, ladder, damping="local", fluid_force="held"):
         return [(float(r["value"]), float(r["force_error"])) for r in self.rows
-                if r["ladder"] == ladder and r.get("damping", "local") == damping]
+                if r["ladder"] == ladder and r.get("damping", "local") == damping
+                and r.get("fluid_force", "held") == fluid_force]
 
     def test_each_damping_reads_its_own_force(self):
         forces = {(r["damping"], r["force"]) for r in self.rows}
@@ -102,6 +104,20 @@ class TableIsTheStudys(unittest.TestCase):
                          (1.0, round(abs(paired[3]), 4)))
         self.assertEqual(self.errors("fluid_step_ratio", "viscous")[-1][1], 0.0)
         self.assertEqual(len(self.errors("fluid_step_ratio", "viscous")), 2)
+
+    def test_the_extrapolated_force_from_its_sixteen_seeds(self):
+        # N = 4, the largest the extrapolated force's limit allows, placed at the limit itself;
+        # N = 1 has no lag. Only the lag's ladder depends on how the force is applied.
+        rows = harness.read_csv(os.path.join(DOCS, "viscous", "interval_extrapolated_0000m.csv"))
+        paired = {int(v): (runs_, rel) for v, runs_, _, _, _, _, rel, _ in
+                  paired_table(rows, "force_horizontal_peak_n_per_m")}
+        self.assertEqual(paired[4][0], 16)
+        ladder = self.errors("fluid_step_ratio", "viscous", "extrapolated")
+        self.assertEqual(ladder[0], (1.0, round(abs(paired[4][1]), 4)))
+        self.assertEqual(ladder[-1], (0.2008, 0.0))
+        self.assertEqual(len(ladder), 2)
+        for other in ("dt_safety", "h_per_diameter", "size_scale"):
+            self.assertEqual(self.errors(other, "viscous", "extrapolated"), [], other)
 
 
 class AccuracyWritesTheTable(unittest.TestCase):

@@ -27,7 +27,9 @@ constexpr double kForce0 = 3e-3;      // [N/m] on disc 0 in x at t = 0
 constexpr double kForceRate = 40.0;   // [N/(m s)]: the force rises linearly in time
 constexpr double kSideForce = -1e-3;  // [N/m] on disc 1 in y, constant
 
-std::vector<double> force_at(double t_s) { return {kForce0 + kForceRate * t_s, 0.0, 0.0, kSideForce}; }
+std::vector<double> force_at(double t_s) {
+  return {kForce0 + kForceRate * t_s, 0.0, 0.0, kSideForce};
+}
 
 /// `exchanges` exchanges of N steps each, the fluid's force sampled at each exchange.
 DemSystem run(unsigned n, unsigned exchanges, bool extrapolate) {

@@ -189,12 +189,10 @@ INSTANTIATE_TEST_SUITE_P(
                            "_rolling_softening"},
                       Case{"saturated_reduced_long_viscous", "1", "inproc",
                            {"--set", "dem.contact.rolling_friction=0.1"}, "_rolling"},
-                      // The fluid's force extrapolated between exchanges: its line through the
-                      // last two exchanges is state.
-                      Case{"saturated_reduced_long_viscous", "2", "ipc",
-                           {"--set", "coupling.fluid_force=extrapolated", "--set",
-                            "coupling.interval=4"},
-                           "_extrapolated"},
+                      // The dynamic scenes' fluid force, extrapolated between exchanges at
+                      // N = 4: its line through the last two exchanges is state (the case
+                      // above runs it too, on one thread and inproc).
+                      Case{"saturated_reduced_long_viscous", "2", "ipc"},
                       // Servo-steered side walls and the biaxial summary's samples, over the
                       // failure peak (at about 1.9 ms), on a specimen half as wide and high.
                       Case{"calibration/biaxial", "2", "ipc",

@@ -190,31 +190,40 @@ TEST(SaturatedCutting, ForcesRidingOnTheNextAdvanceChangeNoBit) {
   // Between output steps the coupler sends the fluid force with the next Advance instead of a
   // separate ApplyForces (two round trips per exchange instead of three). The DEM does the same
   // arithmetic in the same order, so the state must be bit for bit that of a run which records
-  // every step (and so completes every exchange with its own ApplyForces).
-  const std::vector<std::string> short_cut = {"--set", "time.end_time_s=0.002", "--set",
-                                              "output.frame_interval_s=0"};
-  std::vector<std::string> sparse = short_cut, dense = short_cut;
-  sparse.insert(sparse.end(), {"--set", "output.timeseries_every_steps=100000"});
-  dense.insert(dense.end(), {"--set", "output.timeseries_every_steps=1"});
-  const CouplerRun a = run_small_cut("merged_sparse", sparse);
-  const CouplerRun b = run_small_cut("merged_dense", dense);
-  ASSERT_EQ(a.code, 0) << a.err;
-  ASSERT_EQ(b.code, 0) << b.err;
-  const H5Reader ha(a.out / "run.h5"), hb(b.out / "run.h5");
-  const auto ta = ha.doubles("/timeseries/time_s");
-  const auto tb = hb.doubles("/timeseries/time_s");
-  ASSERT_LT(ta.size(), 5u);  // sparse: the start and the end only
-  ASSERT_GT(tb.size(), 100u);
-  EXPECT_EQ(ta.back(), tb.back());
-  for (const char* field : {"/position", "/velocity"}) {
-    const auto xa = ha.doubles(last_frame(ha) + field);
-    const auto xb = hb.doubles(last_frame(hb) + field);
-    ASSERT_EQ(xa.size(), xb.size()) << field;
-    ASSERT_FALSE(xa.empty()) << field;
-    for (std::size_t i = 0; i < xa.size(); ++i) ASSERT_EQ(xa[i], xb[i]) << field << " " << i;
+  // every step (and so completes every exchange with its own ApplyForces). The same with the
+  // fluid's force extrapolated between exchanges (coupling.fluid_force): the line's rate is taken
+  // when the force arrives, with the Advance or on its own.
+  for (const std::string fluid_force : {"held", "extrapolated"}) {
+    SCOPED_TRACE(fluid_force);
+    const std::vector<std::string> short_cut = {
+        "--set", "time.end_time_s=0.002", "--set", "output.frame_interval_s=0",
+        "--set", "coupling.interval=3",   "--set", "coupling.fluid_force=" + fluid_force};
+    std::vector<std::string> sparse = short_cut, dense = short_cut;
+    sparse.insert(sparse.end(), {"--set", "output.timeseries_every_steps=100000"});
+    dense.insert(dense.end(), {"--set", "output.timeseries_every_steps=1"});
+    const CouplerRun a = run_small_cut("merged_sparse_" + fluid_force, sparse);
+    const CouplerRun b = run_small_cut("merged_dense_" + fluid_force, dense);
+    ASSERT_EQ(a.code, 0) << a.err;
+    ASSERT_EQ(b.code, 0) << b.err;
+    if (fluid_force == "extrapolated") {
+      EXPECT_NE(a.err.find("the DEM extrapolates the fluid's force"), std::string::npos) << a.err;
+    }
+    const H5Reader ha(a.out / "run.h5"), hb(b.out / "run.h5");
+    const auto ta = ha.doubles("/timeseries/time_s");
+    const auto tb = hb.doubles("/timeseries/time_s");
+    ASSERT_LT(ta.size(), 5u);  // sparse: the start and the end only
+    ASSERT_GT(tb.size(), 100u);
+    EXPECT_EQ(ta.back(), tb.back());
+    for (const char* field : {"/position", "/velocity"}) {
+      const auto xa = ha.doubles(last_frame(ha) + field);
+      const auto xb = hb.doubles(last_frame(hb) + field);
+      ASSERT_EQ(xa.size(), xb.size()) << field;
+      ASSERT_FALSE(xa.empty()) << field;
+      for (std::size_t i = 0; i < xa.size(); ++i) ASSERT_EQ(xa[i], xb[i]) << field << " " << i;
+    }
+    EXPECT_EQ(ha.doubles("/timeseries/tool_force_x_n_per_m").back(),
+              hb.doubles("/timeseries/tool_force_x_n_per_m").back());
   }
-  EXPECT_EQ(ha.doubles("/timeseries/tool_force_x_n_per_m").back(),
-            hb.doubles("/timeseries/tool_force_x_n_per_m").back());
 }
 
 TEST(SaturatedCutting, TakingTurnsChangesNoBitAndTheWallIsSplitByPhase) {

@@ -6,9 +6,21 @@
 #include "core/bonds.hpp"
 #include "core/cell_grid.hpp"
 #include "core/dem_system.hpp"
+#include "core/lattice.hpp"
 #include "core/particles.hpp"
 
 namespace rockcut::dem::test {
+
+/// Two discs of radius 1 mm, 10 mm apart along x: free of each other, for tests of the
+/// integrator and of external forces.
+inline Particles two_discs() {
+  LatticeSpec spec;
+  spec.nx = 2;
+  spec.ny = 1;
+  spec.spacing_m = 0.01;
+  spec.radius_m = 0.001;
+  return make_lattice(spec);
+}
 
 /// Equal touching discs on a hexagonal lattice, rows along x.
 inline Particles hex_block(int nx, int ny, double r, double rho = 2800) {

@@ -9,18 +9,12 @@
 
 #include "core/dem_system.hpp"
 #include "core/lattice.hpp"
+#include "dem/dem_test_support.hpp"
 
 namespace rockcut::dem {
 namespace {
 
-Particles two_discs() {
-  LatticeSpec spec;
-  spec.nx = 2;
-  spec.ny = 1;
-  spec.spacing_m = 0.01;
-  spec.radius_m = 0.001;
-  return make_lattice(spec);
-}
+using test::two_discs;
 
 constexpr double kDt = 1e-4;
 constexpr double kForce0 = 3e-3;      // [N/m] on disc 0 in x at t = 0

@@ -6,18 +6,12 @@
 
 #include "core/dem_system.hpp"
 #include "core/lattice.hpp"
+#include "dem/dem_test_support.hpp"
 
 namespace rockcut::dem {
 namespace {
 
-Particles two_discs() {
-  LatticeSpec spec;
-  spec.nx = 2;
-  spec.ny = 1;
-  spec.spacing_m = 0.01;
-  spec.radius_m = 0.001;
-  return make_lattice(spec);
-}
+using test::two_discs;
 
 TEST(Verlet, ExactForConstantAcceleration) {
   DemSettings settings;

@@ -530,8 +530,8 @@ void DemSystem::begin_step(double dt) {
 
 void DemSystem::finish_step(double dt, std::span<const double> external) {
   if (!in_split_step_) throw std::logic_error("finish_step without begin_step");
+  hold_external_force(external);  // checks the size first: a refused force changes nothing
   extrapolation_.take(external, time_s_);
-  hold_external_force(external);
   if (!internal_forces_current_) compute_internal_forces();
   finish_forces(settings_.prescribed_motion ? 0.0 : dt);
   in_split_step_ = false;
@@ -567,8 +567,8 @@ void DemSystem::extrapolate_external_force(bool on) {
 }
 
 void DemSystem::set_external_force(std::span<const double> external) {
+  hold_and_reevaluate(external);  // checks the size first: a refused force changes nothing
   extrapolation_.take(external, time_s_);
-  hold_and_reevaluate(external);
 }
 
 void DemSystem::hold_and_reevaluate(std::span<const double> external) {

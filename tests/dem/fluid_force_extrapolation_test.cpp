@@ -93,6 +93,26 @@ TEST(FluidForceExtrapolation, TheLedgerBooksTheForceEachKickUsed) {
   }
 }
 
+TEST(FluidForceExtrapolation, AForceOfTheWrongSizeChangesNothing) {
+  DemSystem s = run(5, 10, true);
+  const std::vector<double> before = s.particles().external_force;
+  for (int k = 0; k < 4; ++k) s.step(kDt);
+  const std::vector<double> moved = s.particles().external_force;  // on the line
+  ASSERT_NE(moved, before);
+  s.begin_step(kDt);
+  EXPECT_THROW(s.finish_step(kDt, std::vector<double>{1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(s.set_external_force(std::vector<double>{1.0}), std::invalid_argument);
+  s.finish_step(kDt, force_at(s.time_s()));
+  // The line through the last two accepted forces: the ramp's rate, not one from the refused.
+  DemSystem fresh = run(5, 11, true);
+  EXPECT_EQ(s.particles().external_force, fresh.particles().external_force);
+  for (int k = 0; k < 3; ++k) {
+    s.step(kDt);
+    fresh.step(kDt);
+  }
+  EXPECT_EQ(s.particles().external_force, fresh.particles().external_force);
+}
+
 TEST(FluidForceExtrapolation, SwitchingOffDropsTheLine) {
   DemSystem s = run(5, 10, true);
   s.extrapolate_external_force(false);

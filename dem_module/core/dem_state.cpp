@@ -185,7 +185,7 @@ void DemSystem::save_state(StateArchive& a) const {
   a.put_scalar("neighbour_rebuilds", static_cast<double>(rebuilds_));
   a.put_scalar("internal_forces_current", internal_forces_current_ ? 1.0 : 0.0);
   a.put_scalar("has_body_forces", has_body_forces_ ? 1.0 : 0.0);
-  if (extrapolation_.on && extrapolation_.has_last) {  // only where the scene extrapolates
+  if (extrapolation_.on && !extrapolation_.last_force.empty()) {  // only where the scene extrapolates
     a.put("fluid_force_rate_n_per_m_s", extrapolation_.rate, 2);
     a.put("fluid_force_at_exchange_n_per_m", extrapolation_.last_force, 2);
     a.put_scalar("fluid_force_exchange_time_s", extrapolation_.last_time_s);
@@ -256,7 +256,6 @@ void DemSystem::assign_state(const StateArchive& a) {
   extrapolation_ = FluidForceExtrapolation{};
   if (a.has("fluid_force_rate_n_per_m_s")) {
     extrapolation_.on = true;
-    extrapolation_.has_last = true;
     a.get("fluid_force_rate_n_per_m_s", extrapolation_.rate, 2 * n);
     a.get("fluid_force_at_exchange_n_per_m", extrapolation_.last_force, 2 * n);
     extrapolation_.last_time_s = a.scalar("fluid_force_exchange_time_s");

@@ -20,16 +20,15 @@ namespace rockcut::dem {
 struct FluidForceExtrapolation {
   bool on = false;
   std::vector<double> rate;        ///< r [N/(m s)], 2 per particle; empty while off
-  std::vector<double> last_force;  ///< F^m [N/m], 2 per particle, the fluid's own (no membrane)
+  std::vector<double> last_force;  ///< F^m [N/m], 2 per particle, the fluid's own; empty: none yet
   double last_time_s = 0.0;        ///< t_m
-  bool has_last = false;
 
   /// Takes the fluid's force F at time t_s: the rate from the last one, then F as the last.
   void take(std::span<const double> force, double t_s) {
     if (!on) return;
     const std::size_t n = force.size();
     const double span_s = t_s - last_time_s;
-    if (!has_last || last_force.size() != n || !(span_s > 0.0)) {
+    if (last_force.size() != n || !(span_s > 0.0)) {
       rate.assign(n, 0.0);
     } else {
       rate.resize(n);
@@ -38,7 +37,6 @@ struct FluidForceExtrapolation {
     }
     last_force.assign(force.begin(), force.end());
     last_time_s = t_s;
-    has_last = true;
   }
 };
 

@@ -173,7 +173,8 @@ def figures(before, after):
     steps = after["steps"] - before["steps"]
     row = {"wall_s": wall, "steps": steps, "ms_per_step": 1e3 * wall / steps,
            "particle_steps_per_s": after["particles"] * steps / wall,
-           "own_s": after["coupler_own_s"], "phases": {}}
+           "own_s": after["coupler_own_s"], "phases": {},
+           "coupling_interval": after.get("coupling_interval", 1)}
     busy = wait = service = 0.0
     for who in ("dem", "fluid"):
         if who + "_busy_s" not in after:

@@ -24,6 +24,13 @@ are upper bounds.
 
 --check NAME:T,... compares the model with variants measured on T threads (a machine with the
 cores): per variant the predicted and the measured wall per step.
+
+--interval N predicts the step at another coupling interval N than the runs' own (each row's
+coupling_interval, 1 where a row lacks it): what the fluid does once per exchange (its passes,
+force, advance and staleness test), the service and the rest (transport, waits, the coupler) are
+per fluid step and scale as N_measured / N; the DEM's phases are per DEM step, and the fluid's
+geometry and boundary refreshes are per distance travelled (geometry_refresh_distance), so
+neither changes with N.
 """
 import argparse
 import json
@@ -63,6 +70,28 @@ def per_step(rows):
     return out
 
 
+# Per-step costs that do not scale with the coupling interval: the fluid's refreshes follow the
+# distance the particles travel, not the exchanges.
+PER_DISTANCE = ("fluid.geometry", "fluid.boundary")
+
+
+def at_interval(costs, measured_interval, interval):
+    """Per-step costs measured at `measured_interval` DEM steps per fluid step, moved to
+    `interval`: the DEM's phases and the fluid's refreshes stay, the rest scales as
+    measured_interval / interval."""
+    scale = measured_interval / interval
+    return {key: value if key.startswith("dem.") or key in PER_DISTANCE else value * scale
+            for key, value in costs.items()}
+
+
+def measured_interval(rows):
+    intervals = {r.get("coupling_interval", 1) for r in rows}
+    if len(intervals) != 1:
+        sys.exit("scaling_model: runs at different coupling intervals %s in one fit"
+                 % sorted(intervals))
+    return intervals.pop()
+
+
 def model(one, two):
     """{part: (serial, parallel, imbalance coefficient)} from per-step costs at 1 and 2 threads."""
     parts = {}
@@ -91,7 +120,11 @@ def main():
     ap.add_argument("--cores", default="2,4,16,64")
     ap.add_argument("--check", default="",
                     help="NAME:T,... variants measured on T threads, to hold the model against")
+    ap.add_argument("--interval", type=int, default=0,
+                    help="predict at this coupling interval N (default: the runs' own)")
     args = ap.parse_args()
+    if args.interval < 0:
+        sys.exit("scaling_model: --interval %d: expected N >= 1" % args.interval)
     try:
         check = [(n, int(t)) for n, t in (c.split(":") for c in args.check.split(",") if c)]
     except ValueError:
@@ -109,6 +142,13 @@ def main():
             print("%s at %g m: no %s and %s runs" % (scene, depth, args.one, args.two))
             continue
         one, two = per_step(variants[args.one]), per_step(variants[args.two])
+        runs_interval = measured_interval(variants[args.one] + variants[args.two])
+        interval = args.interval or runs_interval
+        if interval != runs_interval:
+            one = at_interval(one, runs_interval, interval)
+            two = at_interval(two, runs_interval, interval)
+            print("%s at %g m: measured at N = %d, predicted at N = %d (the measured columns "
+                  "are N = %d's)" % (scene, depth, runs_interval, interval, runs_interval))
         parts = model(one, two)
         base = step_cost(parts, 1)
         print("%s at %g m: %.3f ms/step on 1 thread (measured %.3f), %.3f on 2 (measured %.3f)" % (
@@ -126,6 +166,10 @@ def main():
         for name, threads in check:
             if name not in variants:
                 print("  %s: not measured" % name)
+                continue
+            if measured_interval(variants[name]) != interval:
+                print("  %s: measured at N = %d, not at %d" % (
+                    name, measured_interval(variants[name]), interval))
                 continue
             measured = statistics.median(r["wall_s"] / r["steps"] for r in variants[name])
             t = step_cost(parts, threads)

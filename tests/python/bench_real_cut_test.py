@@ -42,6 +42,46 @@ class ScalingModel(unittest.TestCase):
                                4e-3 / 64 + 1e-4 * 2 / 64 * math.log2(64) + 1.5e-4)
 
 
+    def test_another_coupling_interval(self):
+        # Measured at N = 1: the fluid's passes, the service and the rest happen once per
+        # exchange, a quarter as often at N = 4; the DEM's phases and the fluid's refreshes (per
+        # distance travelled) stay.
+        costs = {"dem.bonds": 4e-3, "fluid.passes": 2e-3, "fluid.geometry": 1e-3,
+                 "fluid.boundary": 1e-4, "service": 8e-4, "rest": 4e-4}
+        moved = scaling_model.at_interval(costs, 1, 4)
+        self.assertEqual(moved["dem.bonds"], 4e-3)
+        self.assertEqual(moved["fluid.geometry"], 1e-3)
+        self.assertEqual(moved["fluid.boundary"], 1e-4)
+        self.assertAlmostEqual(moved["fluid.passes"], 5e-4)
+        self.assertAlmostEqual(moved["service"], 2e-4)
+        self.assertAlmostEqual(moved["rest"], 1e-4)
+        # And back: N = 4's costs at N = 1 are the ones measured there.
+        for key, value in scaling_model.at_interval(moved, 4, 1).items():
+            self.assertAlmostEqual(value, costs[key])
+
+    def test_the_interval_is_the_runs_own_and_one_per_fit(self):
+        self.assertEqual(scaling_model.measured_interval([{}, {"coupling_interval": 1}]), 1)
+        self.assertEqual(scaling_model.measured_interval([{"coupling_interval": 4}]), 4)
+        with self.assertRaises(SystemExit):
+            scaling_model.measured_interval([{"coupling_interval": 1}, {"coupling_interval": 4}])
+
+    def test_the_stored_16_core_runs_at_n_4(self):
+        # The 16-core machine's saturated runs (N = 1), moved to the scene's N = 4: the command
+        # prints the prediction and refuses to hold it against runs made at N = 1.
+        r = subprocess.run(
+            ["/usr/bin/python3", os.path.join(ROOT, "bench", "scaling_model.py"),
+             os.path.join(ROOT, "docs", "record", "results", "scaling_16_cores_saturated.json"),
+             "--interval", "4", "--cores", "16", "--check", "t16:16"],
+            capture_output=True, text=True, timeout=60)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("measured at N = 1, predicted at N = 4", r.stdout)
+        self.assertIn("t16: measured at N = 1, not at 4", r.stdout)
+        sixteen = float(re.search(r"16 cores: ([0-9.]+) ms/step", r.stdout).group(1))
+        # Below N = 1's model (3.27 ms) by what the exchanges cost, above the DEM's own step.
+        self.assertGreater(sixteen, 1.0)
+        self.assertLess(sixteen, 2.5)
+
+
 class RealCut(unittest.TestCase):
     def test_the_cache_key_holds_in_any_checkout(self):
         # The effective scene is named by its path in the tree, not where the tree lies, so the

@@ -120,10 +120,10 @@ def main():
     ap.add_argument("--cores", default="2,4,16,64")
     ap.add_argument("--check", default="",
                     help="NAME:T,... variants measured on T threads, to hold the model against")
-    ap.add_argument("--interval", type=int, default=0,
+    ap.add_argument("--interval", type=int,
                     help="predict at this coupling interval N (default: the runs' own)")
     args = ap.parse_args()
-    if args.interval < 0:
+    if args.interval is not None and args.interval < 1:
         sys.exit("scaling_model: --interval %d: expected N >= 1" % args.interval)
     try:
         check = [(n, int(t)) for n, t in (c.split(":") for c in args.check.split(",") if c)]
@@ -167,9 +167,9 @@ def main():
             if name not in variants:
                 print("  %s: not measured" % name)
                 continue
-            if measured_interval(variants[name]) != interval:
-                print("  %s: measured at N = %d, not at %d" % (
-                    name, measured_interval(variants[name]), interval))
+            at = measured_interval(variants[name])
+            if at != interval:
+                print("  %s: measured at N = %d, not at %d" % (name, at, interval))
                 continue
             measured = statistics.median(r["wall_s"] / r["steps"] for r in variants[name])
             t = step_cost(parts, threads)

@@ -41,7 +41,6 @@ class ScalingModel(unittest.TestCase):
         self.assertAlmostEqual(scaling_model.step_cost(parts, 64),
                                4e-3 / 64 + 1e-4 * 2 / 64 * math.log2(64) + 1.5e-4)
 
-
     def test_another_coupling_interval(self):
         # Measured at N = 1: the fluid's passes, the service and the rest happen once per
         # exchange, a quarter as often at N = 4; the DEM's phases and the fluid's refreshes (per

@@ -11,7 +11,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kRegenerate =
-    "the schema (proto/rockcut/scene.proto) changed; regenerate from the source folder with\n"
+    "the schema (proto/rockcut/*.proto) changed; regenerate from the source folder with\n"
     "  build/bin/scene_reference -o docs/scene_reference.md --field-docs scene/field_docs.cpp";
 
 std::string read(const fs::path& path) {

@@ -147,7 +147,6 @@ void PorePressureModel::initialise(const StaticData& data) {
   boundary_.assign(n, Boundary::interior);
   counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
                               data.position, radius_, sides_, boundary_);
-  position_at_boundary_.assign(data.position.begin(), data.position.end());
 }
 
 void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k,
@@ -173,21 +172,17 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
     ++geometry_updates_;
     local_updates_ += local;
     rows_recomputed_ += local ? refresh_.coefficient_rows.size() : n;
-  } else if (stale == Staleness::boundary) {
-    // A wall (the tool) has moved, or particles have without moving apart (a chip in flight):
-    // the kernel sums see neither, so only the boundary (what the walls and sides seal) is
-    // recomputed.
+  } else if (stale == Staleness::walls) {
+    // Only a wall (the tool) has moved: the kernel sums do not see walls, so only the boundary
+    // (which particles the walls seal) is recomputed.
     ++boundary_updates_;
   }
   phases_.lap(kGeometry);
   if (stale != Staleness::fresh) {
-    // On the current positions: the walls and the box sides are absolute, and the geometry's
-    // positions may lag them by up to half the neighbour skin where particles move as one. The
-    // surface (div r, the normals) is the geometry's, which only relative motion changes.
+    // On the geometry's positions X' (the current ones after a full update).
     counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
-                                k.position, radius_, sides_, boundary_, k.wall_segments);
-    walls_at_boundary_.assign(k.wall_segments.begin(), k.wall_segments.end());
-    position_at_boundary_.assign(k.position.begin(), k.position.end());
+                                geo_.position, radius_, sides_, boundary_, k.wall_segments);
+    walls_at_geometry_.assign(k.wall_segments.begin(), k.wall_segments.end());
   }
   phases_.lap(kBoundary);
   // The step's coefficients follow the geometry.
@@ -282,63 +277,28 @@ bool PorePressureModel::refresh_locally(std::span<const double> position) {
 PorePressureModel::Staleness PorePressureModel::staleness(std::span<const double> position,
                                                           std::span<const double> walls) const {
   if (!(params_.geometry_refresh > 0.0) || position.size() != geo_.position.size() ||
-      position.size() != position_at_boundary_.size() || walls.size() != walls_at_boundary_.size()) {
+      walls.size() != walls_at_geometry_.size()) {
     return Staleness::particles;
   }
-  // Squared distances against (refresh h)^2: no square roots. One pass for the motion since the
-  // geometry and since the boundary.
+  // Squared distances against (refresh h)^2: one pass, no square roots.
   const double limit = params_.geometry_refresh * params_.h_m;
   const double limit2 = limit * limit;
   const double* x = position.data();
-  const double* x_geometry = geo_.position.data();
-  const double* x_boundary = position_at_boundary_.data();
-  const auto n = static_cast<std::ptrdiff_t>(position.size() / 2);
-  double moved2 = 0.0, shifted2 = 0.0;  // maxima: the same at any thread count
-#pragma omp parallel for schedule(static) reduction(max : moved2, shifted2)
-  for (std::ptrdiff_t i = 0; i < n; ++i) {
-    const double dx = x[2 * i] - x_geometry[2 * i], dy = x[2 * i + 1] - x_geometry[2 * i + 1];
-    moved2 = std::max(moved2, dx * dx + dy * dy);
-    const double bx = x[2 * i] - x_boundary[2 * i], by = x[2 * i + 1] - x_boundary[2 * i + 1];
-    shifted2 = std::max(shifted2, bx * bx + by * by);
-  }
-  // The kernel sums depend on the differences x_j - x_i only. Neighbours that moved apart by
-  // less than the distance leave them as accurate as a packing moved by half of it, and an
-  // unlisted pair cannot have come into the support while the lists hold.
-  if (moved2 > 0.25 * limit2 &&
-      (list_.stale(position) || neighbours_moved_apart(position, limit2))) {
-    return Staleness::particles;
-  }
-  if (shifted2 > limit2) return Staleness::boundary;
-  for (std::size_t k = 0; k + 1 < walls.size(); k += 2) {  // both ends of every segment
-    const double dx = walls[k] - walls_at_boundary_[k];
-    const double dy = walls[k + 1] - walls_at_boundary_[k + 1];
-    if (dx * dx + dy * dy > limit2) return Staleness::boundary;
-  }
-  return Staleness::fresh;
-}
-
-bool PorePressureModel::neighbours_moved_apart(std::span<const double> position,
-                                               double limit2) const {
-  const double* x = position.data();
   const double* x0 = geo_.position.data();
-  const int* offsets = list_.offsets().data();
-  const int* neighbours = list_.neighbours().data();
   const auto n = static_cast<std::ptrdiff_t>(position.size() / 2);
-  bool apart = false;  // any pair at all: the same at any thread count
-#pragma omp parallel for schedule(static) reduction(|| : apart)
+  double moved2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : moved2)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     const double dx = x[2 * i] - x0[2 * i], dy = x[2 * i + 1] - x0[2 * i + 1];
-    if (apart || dx * dx + dy * dy <= 0.25 * limit2) continue;
-    for (int k = offsets[i]; k < offsets[i + 1]; ++k) {
-      const auto j = static_cast<std::ptrdiff_t>(neighbours[k]);
-      const double rx = dx - (x[2 * j] - x0[2 * j]), ry = dy - (x[2 * j + 1] - x0[2 * j + 1]);
-      if (rx * rx + ry * ry > limit2) {
-        apart = true;
-        break;
-      }
-    }
+    moved2 = std::max(moved2, dx * dx + dy * dy);
   }
-  return apart;
+  if (moved2 > limit2) return Staleness::particles;
+  for (std::size_t k = 0; k + 1 < walls.size(); k += 2) {  // both ends of every segment
+    const double dx = walls[k] - walls_at_geometry_[k];
+    const double dy = walls[k + 1] - walls_at_geometry_[k + 1];
+    if (dx * dx + dy * dy > limit2) return Staleness::walls;
+  }
+  return Staleness::fresh;
 }
 
 void PorePressureModel::output(const std::string& field, std::vector<double>& values) const {

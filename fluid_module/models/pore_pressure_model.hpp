@@ -93,8 +93,6 @@ class PorePressureModel : public FluidModel {
   std::span<const double> pressure() const { return pressure_; }
   std::span<double> mutable_pressure() { return pressure_; }
   std::span<const Boundary> boundary() const { return boundary_; }
-  /// The positions the boundary was last classified at (the current ones then) [m].
-  std::span<const double> position_at_boundary() const { return position_at_boundary_; }
   std::span<const double> strain_rate() const { return strain_rate_; }
   const Geometry& geometry() const { return geo_; }
   const NeighbourList& neighbour_list() const { return list_; }
@@ -105,8 +103,7 @@ class PorePressureModel : public FluidModel {
   std::uint64_t geometry_updates() const { return geometry_updates_; }
   /// Of those, how many were local (refresh_geometry: only the rows near the moved particles).
   std::uint64_t local_updates() const { return local_updates_; }
-  /// How many times step() recomputed only the boundary: a wall or particles moved, but no two
-  /// neighbours apart.
+  /// How many times step() recomputed only the boundary, because only a wall had moved.
   std::uint64_t boundary_updates() const { return boundary_updates_; }
 
  protected:
@@ -144,18 +141,10 @@ class PorePressureModel : public FluidModel {
   std::size_t cavitated_ = 0;
 
  private:
-  /// What the step must recompute (docs/model.md, "Reusing the geometry"). `particles`: two
-  /// listed neighbours have moved apart by more than geometry_refresh h since the geometry was
-  /// computed, or the neighbour lists are stale (always with geometry_refresh 0 or a changed
-  /// particle or wall count). Else `boundary`: a particle or a wall end has moved more than the
-  /// distance since the boundary was classified (the walls and the box sides are absolute, the
-  /// kernel sums are not).
-  enum class Staleness { fresh, boundary, particles };
+  /// What has moved more than geometry_refresh h since the geometry was computed: a particle
+  /// (always with geometry_refresh 0 or a changed particle or wall count), else a wall end.
+  enum class Staleness { fresh, walls, particles };
   Staleness staleness(std::span<const double> position, std::span<const double> walls) const;
-  /// Whether a pair of the lists has moved apart by more than sqrt(limit2) since the geometry.
-  /// Only the rows of particles that moved more than sqrt(limit2) / 2 are read: for a pair to
-  /// move apart that far, one of the two must have.
-  bool neighbours_moved_apart(std::span<const double> position, double limit2) const;
   /// A local refresh of the geometry (refresh_geometry) around the particles that moved more
   /// than kLocalMoveFraction of the refresh distance; false if it would not pay (then nothing
   /// changed).
@@ -169,10 +158,9 @@ class PorePressureModel : public FluidModel {
   enum StepPhase : std::size_t { kStaleness, kGeometry, kBoundary, kPasses, kAdvance, kForce };
   wire::PhaseClock phases_{{"staleness", "geometry", "boundary", "passes", "advance", "force"}};
   double packing_fraction_ = 1.0;
-  std::vector<double> walls_at_boundary_;     // wall segments the boundary was classified at [m]
-  std::vector<double> position_at_boundary_;  // positions it was classified at [m]
+  std::vector<double> walls_at_geometry_;  // wall segments of the current geometry [m]
   std::uint64_t geometry_updates_ = 0;
-  std::uint64_t boundary_updates_ = 0;  // the boundary alone (walls or the packing moved as one)
+  std::uint64_t boundary_updates_ = 0;  // walls moved, particles not: the boundary alone
   std::uint64_t local_updates_ = 0;
   std::uint64_t rows_recomputed_ = 0;  // over all geometry updates (a full one: every row)
   std::vector<int> moved_;  // the particles a local refresh moves

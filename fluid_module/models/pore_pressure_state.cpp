@@ -3,8 +3,7 @@
 // but rebuilt from the positions it was computed on: the neighbour lists from their last build's
 // positions, the geometry by a full update on geo.position (which a local refresh reproduces bit
 // for bit, sp/geometry.hpp) and the step's coefficients from the geometry. The boundary is saved,
-// since it was classified against the walls and positions of its own time, and so are those
-// (a state written before they were saved takes the geometry's positions for them).
+// since it was classified against the walls of its own time.
 #include "models/implicit_model.hpp"
 #include "models/pore_pressure_model.hpp"
 
@@ -20,8 +19,7 @@ void PorePressureModel::save_state(StateArchive& a) const {
   a.put("list_position_at_build_m", list_.position_at_build(), 2);
   a.put_scalar("list_builds", static_cast<double>(list_.builds()));
   a.put("geometry_position_m", geo_.position, 2);
-  a.put("walls_at_boundary_m", walls_at_boundary_, 4);
-  a.put("position_at_boundary_m", position_at_boundary_, 2);
+  a.put("walls_at_geometry_m", walls_at_geometry_, 4);
   a.put("counters", std::vector<double>{
                         static_cast<double>(counts_.drained), static_cast<double>(counts_.sealed),
                         static_cast<double>(cavitated_), static_cast<double>(geometry_updates_),
@@ -46,15 +44,9 @@ void PorePressureModel::load_state(const StateArchive& a) {
   update_geometry(list_, kernel_, position, lucy_volume_, params_.volume_iterations, geo_);
   update_share();
   step_op_.build(geo_);
-  const char* walls = a.has("walls_at_boundary_m") ? "walls_at_boundary_m" : "walls_at_geometry_m";
-  a.get(walls, walls_at_boundary_);
-  if (walls_at_boundary_.size() % 4 != 0) {
-    throw StateError("state member \"" + std::string(walls) + "\" is not 4 values per segment");
-  }
-  if (a.has("position_at_boundary_m")) {
-    a.get("position_at_boundary_m", position_at_boundary_, 2 * n);
-  } else {
-    position_at_boundary_ = geo_.position;
+  a.get("walls_at_geometry_m", walls_at_geometry_);
+  if (walls_at_geometry_.size() % 4 != 0) {
+    throw StateError("state member \"walls_at_geometry_m\" is not 4 values per segment");
   }
   const auto c = a.values("counters", 7);
   counts_.drained = static_cast<std::size_t>(c[0]);

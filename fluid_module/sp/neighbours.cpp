@@ -17,16 +17,14 @@ NeighbourList::NeighbourList(double support_m, double skin)
 }
 
 bool NeighbourList::update(std::span<const double> position) {
-  if (!stale(position)) return false;
-  build(position);
-  return true;
-}
-
-bool NeighbourList::stale(std::span<const double> position) const {
-  if (position.size() != position_at_build_.size()) return true;
+  if (position.size() != position_at_build_.size()) {
+    build(position);
+    return true;
+  }
   const auto n = static_cast<std::ptrdiff_t>(position.size() / 2);
   const double* x = position.data();
   const double* x0 = position_at_build_.data();
+  const double limit2 = half_skin_m_ * half_skin_m_;
   double max2 = 0.0;  // a maximum: the same at any thread count
 #pragma omp parallel for schedule(static) reduction(max : max2)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
@@ -34,7 +32,9 @@ bool NeighbourList::stale(std::span<const double> position) const {
     max2 = std::max(max2, dx * dx + dy * dy);
   }
   // With no skin any motion at all invalidates the lists.
-  return half_skin_m_ > 0.0 ? max2 > half_skin_m_ * half_skin_m_ : max2 > 0.0;
+  if (half_skin_m_ > 0.0 ? max2 <= limit2 : max2 == 0.0) return false;
+  build(position);
+  return true;
 }
 
 void NeighbourList::bin(std::span<const double> position) {

@@ -22,9 +22,6 @@ class NeighbourList {
   /// Rebuilds the lists if a particle has moved more than half the skin since the last build, or
   /// if the particle count changed. `position` is interleaved x, y [m]. Returns true if it rebuilt.
   bool update(std::span<const double> position);
-  /// Whether update() would rebuild: the count changed or a particle has moved more than half the
-  /// skin since the last build (any motion at all with no skin).
-  bool stale(std::span<const double> position) const;
   /// Rebuilds unconditionally.
   void build(std::span<const double> position);
 

@@ -45,8 +45,8 @@ struct SpParams {
   LaplacianForm laplacian = LaplacianForm::consistent;
   unsigned volume_iterations = 3;
   double skin = 0.1;                   ///< neighbour skin, fraction of h
-  /// Recompute the SP geometry only after two neighbours have moved apart this far, and the
-  /// boundary after a particle or wall has moved this far, fraction of h (0: every step).
+  /// Recompute the SP geometry only after a particle or wall has moved this far, fraction of h
+  /// (0: every step).
   double geometry_refresh = 0.0;
   // Implicit model.
   double solver_tolerance = 1e-8;

@@ -27,7 +27,7 @@ PLAN = "sweep_plan.json"     # in the sweep folder: the runs a sweep will make
 TABLE = "sweep.csv"          # one row per run
 MEAN_TABLE = "sweep_mean.csv"  # with seeds: one row per value
 
-# The scene's defaults (proto/rockcut/scene.proto), used when a summary lacks
+# The fluid block's defaults (proto/rockcut/fluid_scene.proto), used when a summary lacks
 # hydrostatic_pressure_pa: p_hydro = p_atm + rho_w g water_depth_m.
 P_ATM_PA = 101325.0
 RHO_WATER_KG_M3 = 1025.0

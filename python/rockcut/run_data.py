@@ -194,7 +194,7 @@ def blocks(text, name):
 
 
 def vec2(body):
-    """(x, y) of a Vec2 block's body; a field left out is 0 (scene.proto's default)."""
+    """(x, y) of a Vec2 block's body; a field left out is 0 (vec2.proto's default)."""
     fields = scalar_fields("v {" + body + "}", "v")
     return fields.get("x", 0.0), fields.get("y", 0.0)
 

@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rockcut/options.pb.h"
@@ -97,9 +98,10 @@ std::vector<const pb::Descriptor*> reachable(const pb::Descriptor& root) {
 // The schema files the reference comes from: those of the reachable messages, root's first.
 std::vector<std::string> sources_of(const pb::Descriptor& root) {
   std::vector<std::string> files;
-  for (const pb::Descriptor* type : reachable(root))
-    if (std::find(files.begin(), files.end(), "proto/" + type->file()->name()) == files.end())
-      files.push_back("proto/" + type->file()->name());
+  for (const pb::Descriptor* type : reachable(root)) {
+    std::string file = "proto/" + type->file()->name();
+    if (std::find(files.begin(), files.end(), file) == files.end()) files.push_back(std::move(file));
+  }
   return files;
 }
 
@@ -164,8 +166,7 @@ std::string markdown(const pb::Descriptor& root) {
   std::string out =
       "# Scene file reference\n\n"
       "Generated from `" + join(sources_of(root), "`, `") + "` by `scene_reference`: do not edit by "
-      "hand. After "
-      "changing the schema, regenerate with\n`" + std::string(kRegenerate) + "`\n(a test fails while "
+      "hand. After changing the schema, regenerate with\n`" + std::string(kRegenerate) + "`\n(a test fails while "
       "this file is out of date).\n\n"
       "A scene file (`*.pbtxt`) holds one `" + root.full_name() + "` in protobuf text format. Units are "
       "SI. The loader refuses values outside *allowed*, and a block that is present must give its "

@@ -115,6 +115,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "The fluid model. Built in: `explicit` and `implicit` (the pore-pressure SP model of the paper, forward or backward Euler; parameters below) and `prescribed_gradient` (a uniform pressure gradient, force `-grad p * pi r^2` per disc of unit thickness)."},
     {"rockcut.Fluid.neighbour_skin",
      "Neighbour lists hold pairs closer than h (1 + neighbour_skin) and are rebuilt only when a particle has moved more than half the skin since the last build."},
+    {"rockcut.Fluid.open_water_drag",
+     "Drag of the still free water on the grains that meet it (the drained ones: the free surface, chips and thrown grains), which the pressure of eq. 21 alone does not give: each is a cylinder in cross flow, F = -1/2 rho_w C_d (2 r) |v| v with C_d = 1 + 10 Re^(-2/3) (White's fit), rho_w `water_density_kg_m3` and mu `viscosity_pa_s`; the velocity is the mean over the last coupling interval (fluid_module/sp/open_water_drag.hpp, docs/model.md \"Drag in open water\"). Off: the paper's model, in which a thrown grain keeps its speed."},
     {"rockcut.Fluid.permeability_m2",
      "Intrinsic permeability kappa of eq. 12."},
     {"rockcut.Fluid.prescribed_gradient",

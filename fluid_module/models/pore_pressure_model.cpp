@@ -7,6 +7,7 @@
 
 #include "sp/cavitation.hpp"
 #include "sp/format.hpp"
+#include "sp/open_water_drag.hpp"
 #include "sp/operators.hpp"
 #include "sp/pressure_force.hpp"
 #include "sp/storage_equation.hpp"
@@ -241,13 +242,35 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t i = 0; i < count; ++i) g[i] = share[i] * (p[i] - p_hydro);
     step_op_.adjoint_force(geo_, area_excess_, force);
-    phases_.lap(kForce);
-    return;
+  } else {
+    // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].
+    gradient(geo_, pressure_, grad_);
+    gradient_pressure_force(grad_, area_, force);
   }
-  // Eq. 21 with d = 2 r and unit thickness: F = -grad p * pi r^2 [N per m].
-  gradient(geo_, pressure_, grad_);
-  gradient_pressure_force(grad_, area_, force);
+  drag_power_w_per_m_ = 0.0;
+  if (params_.open_water_drag && dt_s > 0.0) add_drag(dt_s, k, force);
   phases_.lap(kForce);
+}
+
+void PorePressureModel::add_drag(double dt_s, const Kinematics& k, std::span<double> force) {
+  // The grains' mean velocity over the interval: the displacement since the last exchange over
+  // the fluid step, or v^{n+N-1/2} where that is what the model receives. One thread, in particle
+  // order: only the drained grains pay, and the power's sum has the same bits at any thread count.
+  const bool from_displacement = params_.strain_from == StrainFrom::displacement;
+  const std::span<const double> field = from_displacement ? k.displacement : k.velocity_half;
+  const double to_velocity = from_displacement ? 1.0 / dt_s : 1.0;
+  double power = 0.0;
+  for (std::size_t i = 0; i < radius_.size(); ++i) {
+    if (boundary_[i] != Boundary::drained) continue;
+    const double vx = field[2 * i] * to_velocity, vy = field[2 * i + 1] * to_velocity;
+    double fx = 0.0, fy = 0.0;
+    add_open_water_drag(radius_[i], vx, vy, params_.water_density_kg_m3, params_.viscosity_pa_s,
+                        fx, fy);
+    force[2 * i] += fx;
+    force[2 * i + 1] += fy;
+    power += fx * vx + fy * vy;
+  }
+  drag_power_w_per_m_ = power;
 }
 
 void PorePressureModel::update_share() {
@@ -331,6 +354,7 @@ void PorePressureModel::scalars(std::vector<std::pair<std::string, double>>& out
   out.emplace_back("geometry_local_updates", static_cast<double>(local_updates_));
   out.emplace_back("geometry_rows_recomputed", static_cast<double>(rows_recomputed_));
   out.emplace_back("boundary_updates", static_cast<double>(boundary_updates_));
+  if (params_.open_water_drag) out.emplace_back("drag_power_w_per_m", drag_power_w_per_m_);
   add_scalars(out);
 }
 

@@ -82,6 +82,8 @@ class PorePressureModel : public FluidModel {
   const wire::PhaseClock* phases() const override { return &phases_; }
   /// The model's diffusion limit, then the pore fluid's stiffness limit (when the DEM is dynamic).
   std::vector<StabilityLimit> limits() const final;
+  /// Power of the open water's drag in the last step [W/m] (0 without fluid.open_water_drag).
+  double drag_power_w_per_m() const { return drag_power_w_per_m_; }
   bool probe(std::span<const double> position, const ProbeBox& box, double& mean_pa,
              std::size_t& count) const override;
   /// Checkpoint and restart (models/pore_pressure_state.cpp).
@@ -139,6 +141,8 @@ class PorePressureModel : public FluidModel {
   Sides sides_;
   BoundaryCounts counts_;
   std::size_t cavitated_ = 0;
+  /// What the open water's drag did on the grains in the last step, sum F . v [W/m] (<= 0).
+  double drag_power_w_per_m_ = 0.0;
 
  private:
   /// What has moved more than geometry_refresh h since the geometry was computed: a particle
@@ -151,6 +155,8 @@ class PorePressureModel : public FluidModel {
   bool refresh_locally(std::span<const double> position);
   /// share_ = phi V_i for the current geometry: the area the excess pressure acts on.
   void update_share();
+  /// Adds the open water's drag (sp/open_water_drag.hpp) on the drained grains to `force`.
+  void add_drag(double dt_s, const Kinematics& k, std::span<double> force);
 
   // Indices into phases_: the staleness test, the neighbour lists and SP geometry (with the
   // step's coefficients), the boundary, the passes over the pairs, the pressure's advance, the

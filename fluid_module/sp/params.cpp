@@ -21,6 +21,8 @@ SpParams sp_params_from_config(const wire::FluidConfig& config) {
   p.bulk_modulus_pa = f.bulk_modulus_pa();
   p.permeability_m2 = f.permeability_m2();
   p.viscosity_pa_s = f.viscosity_pa_s();
+  p.water_density_kg_m3 = f.water_density_kg_m3();
+  p.open_water_drag = f.open_water_drag();
   // Section 3.3: p_hydro = p_atm + rho_w g H. The pressure is absolute.
   p.p_hydro_pa = f.atmospheric_pressure_pa() +
                  f.water_density_kg_m3() * f.gravity_m_s2() * config.water_depth_m();

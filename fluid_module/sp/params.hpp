@@ -26,6 +26,8 @@ struct SpParams {
   double bulk_modulus_pa = 2e9;        ///< M
   double permeability_m2 = 1e-14;      ///< kappa
   double viscosity_pa_s = 1e-3;        ///< mu
+  double water_density_kg_m3 = 1025.0; ///< rho_w of the free water
+  bool open_water_drag = false;        ///< sp/open_water_drag.hpp on the drained grains
   double p_hydro_pa = 101325.0;        ///< p_atm + rho_w g H
   double surface_div_r = 1.5;          ///< eq. 24 threshold
   std::array<bool, 4> sealed{};        ///< left, right, bottom, top (Sides order)

@@ -271,6 +271,7 @@ void PorePressureModel::add_drag(double dt_s, const Kinematics& k, std::span<dou
     power += fx * vx + fy * vy;
   }
   drag_power_w_per_m_ = power;
+  drag_work_j_ += power * dt_s;
 }
 
 void PorePressureModel::update_share() {
@@ -354,7 +355,10 @@ void PorePressureModel::scalars(std::vector<std::pair<std::string, double>>& out
   out.emplace_back("geometry_local_updates", static_cast<double>(local_updates_));
   out.emplace_back("geometry_rows_recomputed", static_cast<double>(rows_recomputed_));
   out.emplace_back("boundary_updates", static_cast<double>(boundary_updates_));
-  if (params_.open_water_drag) out.emplace_back("drag_power_w_per_m", drag_power_w_per_m_);
+  if (params_.open_water_drag) {
+    out.emplace_back("drag_power_w_per_m", drag_power_w_per_m_);
+    out.emplace_back("drag_work_j", drag_work_j_);
+  }
   add_scalars(out);
 }
 

@@ -141,8 +141,10 @@ class PorePressureModel : public FluidModel {
   Sides sides_;
   BoundaryCounts counts_;
   std::size_t cavitated_ = 0;
-  /// What the open water's drag did on the grains in the last step, sum F . v [W/m] (<= 0).
+  /// What the open water's drag did on the grains in the last step, sum F . v [W/m] (<= 0), and
+  /// since the start, sum of power x fluid step [J/m] (a checkpoint keeps it).
   double drag_power_w_per_m_ = 0.0;
+  double drag_work_j_ = 0.0;
 
  private:
   /// What has moved more than geometry_refresh h since the geometry was computed: a particle

@@ -25,6 +25,7 @@ void PorePressureModel::save_state(StateArchive& a) const {
                         static_cast<double>(cavitated_), static_cast<double>(geometry_updates_),
                         static_cast<double>(boundary_updates_), static_cast<double>(local_updates_),
                         static_cast<double>(rows_recomputed_)});
+  if (params_.open_water_drag) a.put_scalar("drag_work_j", drag_work_j_);
   save_model_state(a);
 }
 
@@ -56,6 +57,8 @@ void PorePressureModel::load_state(const StateArchive& a) {
   boundary_updates_ = static_cast<std::uint64_t>(c[4]);
   local_updates_ = static_cast<std::uint64_t>(c[5]);
   rows_recomputed_ = static_cast<std::uint64_t>(c[6]);
+  // A state saved without the drag (or before it existed) resumes with none done yet.
+  drag_work_j_ = a.has("drag_work_j") ? a.scalar("drag_work_j") : 0.0;
   load_model_state(a);
 }
 

@@ -43,5 +43,6 @@ def main(argv):
     print("|---:|---:|---:|---:|---:|---:|")
     for i, (v, n, wall, m, d, e, rel, sh) in enumerate(table(rows, a.key, a.scale)):
         diff = "" if i == 0 else "%+.1f ± %.1f (%+.0f %%)" % (d, e, 100 * rel)
-        print("| %g | %d | %.1f | %.1f | %s | %.2f |" % (v, n, wall, m, diff, sh))
+        value = "%g" % v if isinstance(v, float) else v
+        print("| %s | %d | %.1f | %.1f | %s | %.2f |" % (value, n, wall, m, diff, sh))
 

@@ -38,13 +38,21 @@ def paired_table(rows, key, scale=1.0):
     value taken seed by seed, its standard error, relative to the first value's mean, mean shear
     fraction)]. Failed runs and seeds without a partner are left out of a difference."""
     param = next(iter(rows[0])) if rows else None
+    kept = [r for r in rows if r.get("exit_code", "0") == "0" and r.get(key) not in (None, "")]
+    # Numbers in ascending order; anything else (`--vary fluid.open_water_drag=false,true`) in the
+    # sweep's own order. Either way the first value is the reference.
+    try:
+        of = {r[param]: float(r[param]) for r in kept}
+    except ValueError:
+        of = {}
+        for r in kept:
+            of.setdefault(r[param], len(of))
     by_value = collections.defaultdict(dict)
-    for r in rows:
-        if r.get("exit_code", "0") == "0" and r.get(key) not in (None, ""):
-            by_value[float(r[param])][r["seed"]] = r
+    for r in kept:
+        by_value[r[param]][r["seed"]] = r
     if not by_value:
         return []
-    values = sorted(by_value)
+    values = sorted(by_value, key=lambda v: of[v])
     ref = by_value[values[0]]
     ref_mean = mean(float(r[key]) * scale for r in ref.values())
     out = []
@@ -55,6 +63,6 @@ def paired_table(rows, key, scale=1.0):
         shear = [shear_fraction(float(r["breaks_tensile"]), float(r["breaks_shear"]))
                  for r in runs.values()]
         d = mean(diffs)
-        out.append((v, len(runs), mean(float(r["wall_time_s"]) for r in runs.values()), mean(x),
+        out.append((of[v] if isinstance(of[v], float) else v, len(runs), mean(float(r["wall_time_s"]) for r in runs.values()), mean(x),
                     d, sem(diffs), d / ref_mean if ref_mean else math.nan, mean(shear)))
     return out

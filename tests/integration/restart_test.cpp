@@ -187,8 +187,11 @@ INSTANTIATE_TEST_SUITE_P(
                            {"--set", "dem.contact.rolling_friction=0.1", "--set",
                             "dem.bonds.softening_ratio=9"},
                            "_rolling_softening"},
+                      // ... and the open water's drag, whose work since the start is state.
                       Case{"saturated_reduced_long_viscous", "1", "inproc",
-                           {"--set", "dem.contact.rolling_friction=0.1"}, "_rolling"},
+                           {"--set", "dem.contact.rolling_friction=0.1", "--set",
+                            "fluid.open_water_drag=true"},
+                           "_rolling_drag"},
                       // The dynamic scenes' fluid force, extrapolated between exchanges at
                       // N = 4: its line through the last two exchanges is state (the case
                       // above runs it too, on one thread and inproc).

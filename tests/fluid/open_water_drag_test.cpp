@@ -85,19 +85,23 @@ TEST(OpenWaterDrag, OnlyTheDrainedGrainsFeelItInTheModel) {
 
   // The packing moving as one body at (6, -3) m/s: its drained surface grains feel the drag, its
   // interior grains (the pore water moves with them) do not.
-  std::vector<double> g(x.size(), 0.0);
-  {
-    sp::ExplicitModel moving(params);
-    moving.initialise({p.radius, p.position});
+  // One step of a model initialised on the packing, every grain displaced by (vx, vy) dt.
+  const auto rigid_step = [&](sp::ExplicitModel& model, std::vector<double>& force) {
+    model.initialise({p.radius, p.position});
     std::vector<double> y = p.position, dd(y.size(), 0.0);
-    moving.step(0.0, 0.0, {y, v, dd, {}}, g);
+    model.step(0.0, 0.0, {y, v, dd, {}}, force);
     for (std::size_t i = 0; i < p.size(); ++i) {
       dd[2 * i] = vx * dt;
       dd[2 * i + 1] = vy * dt;
       y[2 * i] += dd[2 * i];
       y[2 * i + 1] += dd[2 * i + 1];
     }
-    moving.step(dt, dt, {y, v, dd, {}}, g);
+    model.step(dt, dt, {y, v, dd, {}}, force);
+  };
+  std::vector<double> g(x.size(), 0.0);
+  {
+    sp::ExplicitModel moving(params);
+    rigid_step(moving, g);
     std::size_t drained = 0, interior = 0;
     double power = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -120,16 +124,8 @@ TEST(OpenWaterDrag, OnlyTheDrainedGrainsFeelItInTheModel) {
   sp::SpParams off = params;
   off.open_water_drag = false;
   sp::ExplicitModel paper(off);
-  paper.initialise({p.radius, p.position});
-  std::vector<double> y = p.position, dd(y.size(), 0.0), h(y.size(), 0.0);
-  paper.step(0.0, 0.0, {y, v, dd, {}}, h);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    dd[2 * i] = vx * dt;
-    dd[2 * i + 1] = vy * dt;
-    y[2 * i] += dd[2 * i];
-    y[2 * i + 1] += dd[2 * i + 1];
-  }
-  paper.step(dt, dt, {y, v, dd, {}}, h);
+  std::vector<double> h(x.size(), 0.0);
+  rigid_step(paper, h);
   EXPECT_EQ(paper.drag_power_w_per_m(), 0.0);
   std::size_t differ = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {

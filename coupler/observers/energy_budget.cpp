@@ -121,6 +121,12 @@ bool EnergyReport::finish(const RunClock& clock, Summary& summary, bool) {
     for (const auto& [key, value] : budget->terms()) summary.set(key, value);
     std::fprintf(stderr, "energy     %s\n", describe(*budget, external_).c_str());
   }
+  // The open water's drag (fluid.open_water_drag): what it took, a part of the fluid's work.
+  if (const double* drag = clock.scalar("fluid_drag_work_j")) {
+    summary.set("open_water_drag_j", -*drag);
+    std::fprintf(stderr, "energy     the open water's drag took %.3g J/m (in the fluid's work)\n",
+                 -*drag);
+  }
   return true;
 }
 

@@ -10,6 +10,8 @@
 
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
+#include "integration/summary_values.hpp"
+#include "support/summary_parser.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -94,6 +96,9 @@ TEST(OpenWaterDrag, AThrownGrainSlowsAsTheCylindersDragSays) {
   // one-step lag alone.
   const std::vector<double> drag_work = h5.doubles("/timeseries/fluid_drag_work_j");
   EXPECT_NEAR(drag_work.back() / (ke.back() - ke.front()), 1.0, 1e-3);
+  // summary.json carries it as what the drag took.
+  const coupler::Summary s = coupler::read_summary(r.out / "summary.json");
+  EXPECT_EQ(number(s, "open_water_drag_j"), -drag_work.back());
 }
 
 }  // namespace

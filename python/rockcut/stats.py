@@ -42,17 +42,17 @@ def paired_table(rows, key, scale=1.0):
     # Numbers in ascending order; anything else (`--vary fluid.open_water_drag=false,true`) in the
     # sweep's own order. Either way the first value is the reference.
     try:
-        of = {r[param]: float(r[param]) for r in kept}
+        value_of = [float(r[param]) for r in kept]
+        numeric = True
     except ValueError:
-        of = {}
-        for r in kept:
-            of.setdefault(r[param], len(of))
+        value_of = [r[param] for r in kept]
+        numeric = False
     by_value = collections.defaultdict(dict)
-    for r in kept:
-        by_value[r[param]][r["seed"]] = r
+    for v, r in zip(value_of, kept):
+        by_value[v][r["seed"]] = r
     if not by_value:
         return []
-    values = sorted(by_value, key=lambda v: of[v])
+    values = sorted(by_value) if numeric else list(by_value)
     ref = by_value[values[0]]
     ref_mean = mean(float(r[key]) * scale for r in ref.values())
     out = []
@@ -63,6 +63,6 @@ def paired_table(rows, key, scale=1.0):
         shear = [shear_fraction(float(r["breaks_tensile"]), float(r["breaks_shear"]))
                  for r in runs.values()]
         d = mean(diffs)
-        out.append((of[v] if isinstance(of[v], float) else v, len(runs), mean(float(r["wall_time_s"]) for r in runs.values()), mean(x),
+        out.append((v, len(runs), mean(float(r["wall_time_s"]) for r in runs.values()), mean(x),
                     d, sem(diffs), d / ref_mean if ref_mean else math.nan, mean(shear)))
     return out

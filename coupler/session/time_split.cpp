@@ -37,6 +37,36 @@ double add_module(const std::string& who, const RunModule& m, Summary& summary,
 
 }  // namespace
 
+void report_rebuilds(const RunClock& clock, Summary& summary) {
+  // The counts since the run's start, from the last report each module sent (kept over resumes).
+  const double* lists = clock.scalar("neighbour_rebuilds");
+  const double* refreshes = clock.scalar("fluid_geometry_updates");
+  const double* local = clock.scalar("fluid_geometry_local_updates");
+  const double* rows = clock.scalar("fluid_geometry_rows_recomputed");
+  if (lists) summary.set("dem_neighbour_rebuilds", static_cast<std::int64_t>(*lists));
+  if (refreshes) summary.set("fluid_geometry_updates", static_cast<std::int64_t>(*refreshes));
+  if (local) summary.set("fluid_geometry_local_updates", static_cast<std::int64_t>(*local));
+  if (rows) summary.set("fluid_geometry_rows_recomputed", static_cast<std::int64_t>(*rows));
+  if (!lists && !refreshes) return;
+  std::string line = "rebuilds  ";
+  char part[160];
+  if (lists) {
+    std::snprintf(part, sizeof part, " DEM neighbour lists %.0f", *lists);
+    line += part;
+  }
+  if (refreshes) {
+    std::snprintf(part, sizeof part, "%s fluid geometry %.0f (%.0f local), %.4g rows recomputed",
+                  lists ? ";" : "", *refreshes, local ? *local : 0.0, rows ? *rows : 0.0);
+    line += part;
+  }
+  const double steps = static_cast<double>(clock.step);
+  if (steps > 0) {
+    std::snprintf(part, sizeof part, ", over %.0f steps", steps);
+    line += part;
+  }
+  std::printf("%s\n", line.c_str());
+}
+
 void report_time_split(const RunParts& run, Summary& summary, double loop_wall_s) {
   std::string line;
   double requests_s = add_module("dem", run.modules.dem(), summary, line);
@@ -51,6 +81,7 @@ void report_time_split(const RunParts& run, Summary& summary, double loop_wall_s
     std::printf("time       %s; coupler's own work %.1f %% of %.3g s\n", line.c_str(),
                 100.0 * own_s / loop_wall_s, loop_wall_s);
   }
+  report_rebuilds(run.clock, summary);
 }
 
 }  // namespace rockcut::coupler

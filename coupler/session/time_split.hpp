@@ -12,4 +12,8 @@ namespace rockcut::coupler {
 /// in `summary`, for the loop of this invocation (`loop_wall_s`), and prints the split.
 void report_time_split(const RunParts& run, Summary& summary, double loop_wall_s);
 
+/// Sets dem_neighbour_rebuilds and fluid_geometry_updates, _local_updates, _rows_recomputed
+/// (since the run's start, over resumes) where the modules report them, and prints one line.
+void report_rebuilds(const RunClock& clock, Summary& summary);
+
 }  // namespace rockcut::coupler

@@ -285,6 +285,8 @@ void DemService::report(wire::Message& reply) {
   if (e.viscous_damping_j > 0) out["viscous_damping_bonds_j"] = e.viscous_damping_bonds_j;
   out["rolling_j"] = e.rolling_j;
   out["bonds"] = static_cast<double>(s.bonds().size());
+  // Since the run's start (kept over resumes): what a cut's flying fragments cost in list work.
+  out["neighbour_rebuilds"] = static_cast<double>(s.neighbour_rebuilds());
   if (s.bonds().law().softening_ratio > 0) {
     out["bond_softening_j"] = e.bond_softening_j;
     std::size_t damaged = 0;

@@ -276,6 +276,23 @@ TEST(SaturatedCutting, TakingTurnsChangesNoBitAndTheWallIsSplitByPhase) {
     }
     EXPECT_GE(number(s, "coupler_own_s"), 0.0);
     EXPECT_LE(number(s, "coupler_own_s"), number(s, "wall_time_s"));
+
+    // The rebuild counts: the time series' last values (the modules' own counters), the DEM's
+    // lists rebuilt as the tool moves, the fluid's geometry built at least once (this 3 ms cut
+    // moves nothing far enough for a refresh), and no more rows than full refreshes would take.
+    const H5Reader h(r->out / "run.h5");
+    const double lists = number(s, "dem_neighbour_rebuilds");
+    const double refreshes = number(s, "fluid_geometry_updates");
+    EXPECT_EQ(lists, h.doubles("/timeseries/neighbour_rebuilds").back());
+    EXPECT_EQ(refreshes, h.doubles("/timeseries/fluid_geometry_updates").back());
+    EXPECT_EQ(number(s, "fluid_geometry_local_updates"),
+              h.doubles("/timeseries/fluid_geometry_local_updates").back());
+    EXPECT_GT(lists, 1.0);
+    EXPECT_GE(refreshes, 1.0);
+    EXPECT_LE(number(s, "fluid_geometry_local_updates"), refreshes);
+    EXPECT_LE(number(s, "fluid_geometry_rows_recomputed"), refreshes * number(s, "particles"));
+    EXPECT_GE(number(s, "fluid_geometry_rows_recomputed"), 0.0);
+    EXPECT_NE(r->out_text.find("rebuilds   DEM neighbour lists "), std::string::npos) << r->out_text;
   }
   EXPECT_GT(number(coupler::read_summary(a.out / "summary.json"), "dem_after_reply_s"), 0.0);
   // Taking turns, after_reply has nothing to compute: what remains is the timing of an empty

@@ -2,6 +2,7 @@
 "The coupling interval over sixteen seeds").
 
   rockcut paired SWEEP_CSV [--key force_horizontal_mean_n_per_m] [--scale 1e-3]
+  rockcut paired SWEEP_CSV --against OTHER_CSV [--key ...]
 
 SWEEP_CSV is a sweep's sweep.csv, run with --seeds: its first column is the varied parameter.
 Every value is run on the same specimens, so its difference from the first (smallest) value is
@@ -10,12 +11,17 @@ the seeds' own spread hides. Prints a markdown table, one row per value: runs, m
 mean of KEY (times --scale), the mean paired difference from the first value ± its standard
 error (and relative to the first value's mean), and the mean shear fraction of the broken bonds.
 Seeds missing from either value, and failed runs, are left out of a difference.
+
+With --against, two sweeps of the same values and seeds (the same sweep run again with one
+option changed, `--set fluid.open_water_drag=true` say) are paired run by run: one row per value,
+the pairs, KEY in each, the mean difference SWEEP_CSV - OTHER_CSV ± its standard error (and
+relative to OTHER_CSV's mean), and the shear fractions.
 """
 import argparse
 import csv
 import sys
 
-from .stats import paired_table
+from .stats import against_table, paired_table
 
 
 
@@ -25,24 +31,45 @@ def table(rows, key, scale=1.0):
     return paired_table(rows, key, scale)
 
 
+def read_rows(path, key):
+    try:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        sys.exit("rockcut paired: %s" % e)
+    if not rows or key not in rows[0] or "seed" not in rows[0]:
+        sys.exit("rockcut paired: %s has no seed column or no %s column" % (path, key))
+    return rows
+
+
 def main(argv):
     ap = argparse.ArgumentParser(prog="rockcut paired", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv")
     ap.add_argument("--key", default="force_horizontal_mean_n_per_m")
     ap.add_argument("--scale", type=float, default=1e-3)
+    ap.add_argument("--against", metavar="OTHER_CSV",
+                    help="pair each run with the run of the same value and seed in this sweep")
     a = ap.parse_args(argv)
-    try:
-        with open(a.csv) as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        sys.exit("rockcut paired: %s" % e)
-    if not rows or a.key not in rows[0] or "seed" not in rows[0]:
-        sys.exit("rockcut paired: %s has no seed column or no %s column" % (a.csv, a.key))
+    rows = read_rows(a.csv, a.key)
     param = next(iter(rows[0]))
+    if a.against:
+        other = read_rows(a.against, a.key)
+        if next(iter(other[0])) != param:
+            sys.exit("rockcut paired: %s varies %s, %s varies %s: nothing to pair"
+                     % (a.csv, param, a.against, next(iter(other[0]))))
+        t = against_table(rows, other, a.key, a.scale)
+        if not t:
+            sys.exit("rockcut paired: no run of %s has a partner of the same value and seed in %s"
+                     % (a.csv, a.against))
+        print("| %s | pairs | %s | against | difference | shear fraction, against |" % (param, a.key))
+        print("|---:|---:|---:|---:|---:|---:|")
+        for v, n, m_a, m_b, d, e, rel, sh_a, sh_b in t:
+            print("| %s | %d | %.1f | %.1f | %+.1f ± %.1f (%+.0f %%) | %.2f, %.2f |"
+                  % (v, n, m_a, m_b, d, e, 100 * rel, sh_a, sh_b))
+        return
     print("| %s | runs | wall [s] | %s | difference from the first | shear fraction |" % (param, a.key))
     print("|---:|---:|---:|---:|---:|---:|")
     for i, (v, n, wall, m, d, e, rel, sh) in enumerate(table(rows, a.key, a.scale)):
         diff = "" if i == 0 else "%+.1f ± %.1f (%+.0f %%)" % (d, e, 100 * rel)
         value = "%g" % v if isinstance(v, float) else v
         print("| %s | %d | %.1f | %.1f | %s | %.2f |" % (value, n, wall, m, diff, sh))
-

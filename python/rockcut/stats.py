@@ -66,3 +66,45 @@ def paired_table(rows, key, scale=1.0):
         out.append((v, len(runs), mean(float(r["wall_time_s"]) for r in runs.values()), mean(x),
                     d, sem(diffs), d / ref_mean if ref_mean else math.nan, mean(shear)))
     return out
+
+
+def against_table(rows, other_rows, key, scale=1.0):
+    """Two sweeps of the same values and seeds, one with a change (an option set, another build),
+    paired run by run: [(value, pairs, mean of key in rows, in other_rows, mean difference rows -
+    other_rows over the pairs, its standard error, relative to other_rows' mean, shear fraction in
+    rows, in other_rows)], one per value of the first column, in ascending order when numbers.
+    A run pairs with the run of the same value and seed; failed runs and runs without a partner
+    are left out."""
+    def index(rs):
+        param = next(iter(rs[0])) if rs else None
+        kept = {}
+        for r in rs:
+            if r.get("exit_code", "0") == "0" and r.get(key) not in (None, ""):
+                kept[(r[param], r["seed"])] = r
+        return kept
+
+    here, there = index(rows), index(other_rows)
+    pairs = collections.defaultdict(list)
+    order = []
+    for (v, s) in here:
+        if (v, s) in there:
+            if v not in pairs:
+                order.append(v)
+            pairs[v].append((here[(v, s)], there[(v, s)]))
+    try:
+        order.sort(key=float)
+    except ValueError:
+        pass
+    out = []
+    for v in order:
+        a = [float(p[0][key]) * scale for p in pairs[v]]
+        b = [float(p[1][key]) * scale for p in pairs[v]]
+        diffs = [x - y for x, y in zip(a, b)]
+        shear_a = [shear_fraction(float(p[0]["breaks_tensile"]), float(p[0]["breaks_shear"]))
+                   for p in pairs[v]]
+        shear_b = [shear_fraction(float(p[1]["breaks_tensile"]), float(p[1]["breaks_shear"]))
+                   for p in pairs[v]]
+        d, m_b = mean(diffs), mean(b)
+        out.append((v, len(diffs), mean(a), m_b, d, sem(diffs), d / m_b if m_b else math.nan,
+                    mean(shear_a), mean(shear_b)))
+    return out

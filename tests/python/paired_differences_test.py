@@ -12,6 +12,7 @@ import harness  # tests/python/harness.py: the command line
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from rockcut import paired as paired_differences
+from rockcut import stats
 
 FIELDS = ["coupling.interval", "seed", "force_horizontal_mean_n_per_m", "breaks_shear",
           "breaks_tensile", "wall_time_s", "exit_code"]
@@ -53,6 +54,51 @@ class PairedDifferences(unittest.TestCase):
         t = paired_differences.table(rows, "force_horizontal_mean_n_per_m", 1.0)
         self.assertEqual([r[0] for r in t], ["true", "false"])
         self.assertAlmostEqual(t[1][4], -20.0)  # (-10 - 30) / 2
+
+    def test_two_sweeps_are_paired_run_by_run(self):
+        # The same two values and seeds run twice, the second sweep 5 and 15 N/m lower at N = 1
+        # (differences 5, 15: mean 10, standard error 5 by hand), a failed run and a seed the
+        # other sweep lacks left out.
+        here = [row(1, 1, 100), row(1, 2, 200), row(3, 1, 300), row(3, 2, 999, exit_code=1),
+                row(3, 5, 50)]
+        there = [row(3, 1, 280, shear=3, tensile=1), row(1, 1, 95), row(1, 2, 185)]
+        t = stats.against_table(here, there, "force_horizontal_mean_n_per_m", 1.0)
+        self.assertEqual([r[0] for r in t], ["1", "3"])
+        v, n, m_a, m_b, d, e, rel, sh_a, sh_b = t[0]
+        self.assertEqual(n, 2)
+        self.assertAlmostEqual(m_a, 150.0)
+        self.assertAlmostEqual(m_b, 140.0)
+        self.assertAlmostEqual(d, 10.0)
+        self.assertAlmostEqual(e, 5.0)
+        self.assertAlmostEqual(rel, 10.0 / 140.0)
+        self.assertEqual(t[1][1], 1)        # seed 1 only
+        self.assertAlmostEqual(t[1][4], 20.0)
+        self.assertAlmostEqual(t[1][7], 0.25)
+        self.assertAlmostEqual(t[1][8], 0.75)
+
+    def test_against_on_the_command_line(self):
+        import csv
+        import tempfile
+        with tempfile.TemporaryDirectory(dir=ARGS.tmp) as d:
+            def write(name, rows, fields=FIELDS):
+                path = os.path.join(d, name)
+                with open(path, "w", newline="") as f:
+                    w = csv.DictWriter(f, fieldnames=fields)
+                    w.writeheader()
+                    w.writerows(rows)
+                return path
+            a = write("a.csv", [row(0, 1, 2000), row(0, 2, 4000)])
+            b = write("b.csv", [row(0, 1, 1000), row(0, 2, 2000)])
+            cmd = [os.path.join(ROOT, "scripts", "rockcut"), "paired", a, "--against", b]
+            out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+            self.assertIn("| 0 | 2 | 3.0 | 1.5 | +1.5 ± 0.5 (+100 %) | 0.25, 0.25 |", out)
+            # Sweeps of different parameters do not pair: a clear error, no table.
+            other = write("c.csv", [dict(r, **{"water_depth_m": "0"}) for r in [row(0, 1, 1)]],
+                          ["water_depth_m"] + FIELDS)
+            r = subprocess.run(cmd[:-1] + [other], capture_output=True, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("nothing to pair", r.stderr)
+            self.assertNotIn("|", r.stdout)
 
     def test_the_committed_study_gives_the_documented_table(self):
         # docs/accuracy.md quotes N = 3 at 0 m over sixteen seeds as +7.1 ± 5.4 kN/m (+9 %), N = 10

@@ -222,6 +222,11 @@ def main():
                                    for a, b, ms in rows]}
                 if rows:
                     run["whole_over_first_window"] = whole_ms / rows[0][2]
+                # What a cut's flying grains cost in list work (summary.json, since the start).
+                for key in ("dem_neighbour_rebuilds", "fluid_geometry_updates",
+                            "fluid_geometry_rows_recomputed"):
+                    if key in summary:
+                        run[key] = summary[key]
                 results["runs"].append(run)
                 if name == "dry":
                     dry_threads = int(bench_real_cut.field(text, "dem", "threads") or 1)
@@ -235,6 +240,13 @@ def main():
                         w["ms_per_step"]))
                 if rows:
                     print("          whole run / first window: %.2f" % run["whole_over_first_window"])
+                if "dem_neighbour_rebuilds" in run:
+                    print("          DEM lists rebuilt every %.0f steps" % (
+                        run["steps"] / max(run["dem_neighbour_rebuilds"], 1)), end="")
+                    if "fluid_geometry_updates" in run:
+                        print(", fluid geometry refreshed every %.1f exchanges" % (
+                            summary["exchanges"] / max(run["fluid_geometry_updates"], 1)), end="")
+                    print()
     finally:
         if not args.keep:
             shutil.rmtree(work, ignore_errors=True)

@@ -100,6 +100,15 @@ class WholeCut(unittest.TestCase):
             self.assertTrue(os.path.exists(os.path.join(
                 tmp, "runs", "dry" if run["depth_m"] is None else "saturated_0m", "run.h5")))
         self.assertAlmostEqual(saturated["wall_over_dry"], saturated["wall_s"] / dry["wall_s"])
+        # The list work of each run, from its summary.json: the DEM's in both, the fluid's in
+        # the saturated one only.
+        for run in (dry, saturated):
+            self.assertGreater(run["dem_neighbour_rebuilds"], 0)
+            self.assertLess(run["dem_neighbour_rebuilds"], run["steps"])
+        self.assertNotIn("fluid_geometry_updates", dry)
+        self.assertGreaterEqual(saturated["fluid_geometry_updates"], 1)
+        self.assertIn("DEM lists rebuilt every", p.stdout)
+        self.assertIn("fluid geometry refreshed every", p.stdout)
         # The same runs taken further with --resume: each continues from its end-of-run checkpoint
         # (a second segment in its log) instead of starting again.
         resumed = argv[:argv.index("time.end_time_s=0.003")] + ["time.end_time_s=0.004"] + \

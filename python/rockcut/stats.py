@@ -32,13 +32,23 @@ def shear_fraction(tensile, shear):
     return shear / (tensile + shear)
 
 
+def completed_runs(rows, key):
+    """The sweep.csv rows of runs that completed and have `key`."""
+    return [r for r in rows if r.get("exit_code", "0") == "0" and r.get(key) not in (None, "")]
+
+
+def run_shear_fraction(row):
+    """A sweep.csv row's shear breaks over all its breaks."""
+    return shear_fraction(float(row["breaks_tensile"]), float(row["breaks_shear"]))
+
+
 def paired_table(rows, key, scale=1.0):
     """Paired differences over seeds from sweep.csv rows (dicts of strings; the first column is the
     varied parameter): [(value, runs, mean wall time, mean of key, mean difference from the first
     value taken seed by seed, its standard error, relative to the first value's mean, mean shear
     fraction)]. Failed runs and seeds without a partner are left out of a difference."""
     param = next(iter(rows[0])) if rows else None
-    kept = [r for r in rows if r.get("exit_code", "0") == "0" and r.get(key) not in (None, "")]
+    kept = completed_runs(rows, key)
     # Numbers in ascending order; anything else (`--vary fluid.open_water_drag=false,true`) in the
     # sweep's own order. Either way the first value is the reference.
     try:
@@ -60,11 +70,10 @@ def paired_table(rows, key, scale=1.0):
         runs = by_value[v]
         x = [float(r[key]) * scale for r in runs.values()]
         diffs = [(float(runs[s][key]) - float(ref[s][key])) * scale for s in runs if s in ref]
-        shear = [shear_fraction(float(r["breaks_tensile"]), float(r["breaks_shear"]))
-                 for r in runs.values()]
         d = mean(diffs)
         out.append((v, len(runs), mean(float(r["wall_time_s"]) for r in runs.values()), mean(x),
-                    d, sem(diffs), d / ref_mean if ref_mean else math.nan, mean(shear)))
+                    d, sem(diffs), d / ref_mean if ref_mean else math.nan,
+                    mean(run_shear_fraction(r) for r in runs.values())))
     return out
 
 
@@ -77,11 +86,7 @@ def against_table(rows, other_rows, key, scale=1.0):
     are left out."""
     def index(rs):
         param = next(iter(rs[0])) if rs else None
-        kept = {}
-        for r in rs:
-            if r.get("exit_code", "0") == "0" and r.get(key) not in (None, ""):
-                kept[(r[param], r["seed"])] = r
-        return kept
+        return {(r[param], r["seed"]): r for r in completed_runs(rs, key)}
 
     here, there = index(rows), index(other_rows)
     pairs = collections.defaultdict(list)
@@ -100,11 +105,8 @@ def against_table(rows, other_rows, key, scale=1.0):
         a = [float(p[0][key]) * scale for p in pairs[v]]
         b = [float(p[1][key]) * scale for p in pairs[v]]
         diffs = [x - y for x, y in zip(a, b)]
-        shear_a = [shear_fraction(float(p[0]["breaks_tensile"]), float(p[0]["breaks_shear"]))
-                   for p in pairs[v]]
-        shear_b = [shear_fraction(float(p[1]["breaks_tensile"]), float(p[1]["breaks_shear"]))
-                   for p in pairs[v]]
         d, m_b = mean(diffs), mean(b)
         out.append((v, len(diffs), mean(a), m_b, d, sem(diffs), d / m_b if m_b else math.nan,
-                    mean(shear_a), mean(shear_b)))
+                    mean(run_shear_fraction(p[0]) for p in pairs[v]),
+                    mean(run_shear_fraction(p[1]) for p in pairs[v])))
     return out

@@ -28,6 +28,10 @@ def free_port():
         return s.getsockname()[1]
 
 
+def _exit_on_sigterm(signum, frame):
+    raise SystemExit(128 + signum)
+
+
 class SlurmCluster:
     def __init__(self, root, cpus=None):
         self.root = os.path.abspath(root)
@@ -49,6 +53,9 @@ class SlurmCluster:
             pwd.getpwnam("munge")
         except KeyError:
             raise Unavailable("no munge user (the munge package creates it)")
+        # A test stopped with SIGTERM (ctest's timeout, a user's kill) unwinds through __exit__
+        # instead of leaving the daemons running.
+        signal.signal(signal.SIGTERM, _exit_on_sigterm)
         try:
             self._start()
         except BaseException:
@@ -112,6 +119,9 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
 # Builtin (FIFO): a task starts as soon as a CPU frees, not at the next backfill pass (30 s).
 SchedulerType=sched/builtin
+# A requeued task is held for cred_expire; the main loop then starts it within 2 s instead of at
+# its next pass (30-60 s), which left the node idle when no other task was pending.
+SchedulerParameters=sched_interval=2
 MpiDefault=none
 ReturnToService=2
 JobRequeue=1

@@ -1,16 +1,17 @@
 """Paired differences over specimen seeds in a rockcut sweep CSV (docs/record/accuracy.md,
 "The coupling interval over sixteen seeds").
 
-  rockcut paired SWEEP_CSV [--key force_horizontal_mean_n_per_m] [--scale 1e-3]
+  rockcut paired SWEEP_CSV [--key force_horizontal_mean_n_per_m] [--scale 1e-3] [--reference V]
   rockcut paired SWEEP_CSV --against OTHER_CSV [--key ...]
 
 SWEEP_CSV is a sweep's sweep.csv, run with --seeds: its first column is the varied parameter.
-Every value is run on the same specimens, so its difference from the first (smallest) value is
-taken seed by seed; the mean of those differences and its standard error resolve a change that
-the seeds' own spread hides. Prints a markdown table, one row per value: runs, mean wall time,
-mean of KEY (times --scale), the mean paired difference from the first value ± its standard
-error (and relative to the first value's mean), and the mean shear fraction of the broken bonds.
-Seeds missing from either value, and failed runs, are left out of a difference.
+Every value is run on the same specimens, so its difference from the reference value (the first,
+smallest, unless --reference names another: the scene's own setting, say) is taken seed by seed;
+the mean of those differences and its standard error resolve a change that the seeds' own spread
+hides. Prints a markdown table, one row per value: runs, mean wall time, mean of KEY (times
+--scale), the mean paired difference from the reference ± its standard error (and relative to the
+reference's mean), and the mean shear fraction of the broken bonds. Seeds missing from either
+value, and failed runs, are left out of a difference.
 
 With --against, two sweeps of the same values and seeds (the same sweep run again with one
 option changed, `--set fluid.open_water_drag=true` say) are paired run by run: one row per value,
@@ -25,10 +26,10 @@ from .stats import against_table, paired_table
 
 
 
-def table(rows, key, scale=1.0):
+def table(rows, key, scale=1.0, reference=None):
     """[(value, runs, wall, mean, diff, diff_sem, diff_rel, shear)] from sweep.csv rows
     (stats.paired_table)."""
-    return paired_table(rows, key, scale)
+    return paired_table(rows, key, scale, reference)
 
 
 def read_rows(path, key):
@@ -49,7 +50,12 @@ def main(argv):
     ap.add_argument("--scale", type=float, default=1e-3)
     ap.add_argument("--against", metavar="OTHER_CSV",
                     help="pair each run with the run of the same value and seed in this sweep")
+    ap.add_argument("--reference", metavar="VALUE",
+                    help="the value the others are differenced from (default: the first)")
     a = ap.parse_args(argv)
+    if a.against and a.reference is not None:
+        sys.exit("rockcut paired: --reference pairs values of one sweep; --against pairs two "
+                 "sweeps run by run: give one of them")
     rows = read_rows(a.csv, a.key)
     param = next(iter(rows[0]))
     if a.against:
@@ -67,9 +73,20 @@ def main(argv):
             print("| %s | %d | %.1f | %.1f | %+.1f ± %.1f (%+.0f %%) | %.2f, %.2f |"
                   % (v, n, m_a, m_b, d, e, 100 * rel, sh_a, sh_b))
         return
-    print("| %s | runs | wall [s] | %s | difference from the first | shear fraction |" % (param, a.key))
+    try:
+        t = table(rows, a.key, a.scale, a.reference)
+    except ValueError as e:
+        sys.exit("rockcut paired: --reference: %s" % e)
+    ref_name = "the first" if a.reference is None else "%s = %s" % (param, a.reference)
+    print("| %s | runs | wall [s] | %s | difference from %s | shear fraction |"
+          % (param, a.key, ref_name))
     print("|---:|---:|---:|---:|---:|---:|")
-    for i, (v, n, wall, m, d, e, rel, sh) in enumerate(table(rows, a.key, a.scale)):
-        diff = "" if i == 0 else "%+.1f ± %.1f (%+.0f %%)" % (d, e, 100 * rel)
+    if not t:
+        sys.exit("rockcut paired: %s has no completed run" % a.csv)
+    ref_value = t[0][0]
+    if a.reference is not None:
+        ref_value = float(a.reference) if isinstance(ref_value, float) else a.reference
+    for v, n, wall, m, d, e, rel, sh in t:
+        diff = "" if v == ref_value else "%+.1f ± %.1f (%+.0f %%)" % (d, e, 100 * rel)
         value = "%g" % v if isinstance(v, float) else v
         print("| %s | %d | %.1f | %.1f | %s | %.2f |" % (value, n, wall, m, diff, sh))

@@ -42,11 +42,14 @@ def run_shear_fraction(row):
     return shear_fraction(float(row["breaks_tensile"]), float(row["breaks_shear"]))
 
 
-def paired_table(rows, key, scale=1.0):
+def paired_table(rows, key, scale=1.0, reference=None):
     """Paired differences over seeds from sweep.csv rows (dicts of strings; the first column is the
-    varied parameter): [(value, runs, mean wall time, mean of key, mean difference from the first
-    value taken seed by seed, its standard error, relative to the first value's mean, mean shear
-    fraction)]. Failed runs and seeds without a partner are left out of a difference."""
+    varied parameter): [(value, runs, mean wall time, mean of key, mean difference from the
+    reference value taken seed by seed, its standard error, relative to the reference's mean, mean
+    shear fraction)]. The reference is the first value unless `reference` (a string, compared as a
+    number where the values are numbers) names another; a reference that is not a value of the
+    sweep raises ValueError. Failed runs and seeds without a partner are left out of a
+    difference."""
     param = next(iter(rows[0])) if rows else None
     kept = completed_runs(rows, key)
     # Numbers in ascending order; anything else (`--vary fluid.open_water_drag=false,true`) in the
@@ -63,7 +66,14 @@ def paired_table(rows, key, scale=1.0):
     if not by_value:
         return []
     values = sorted(by_value) if numeric else list(by_value)
-    ref = by_value[values[0]]
+    ref_value = values[0]
+    if reference is not None:
+        ref_value = float(reference) if numeric else reference
+        if ref_value not in by_value:
+            raise ValueError("%s = %s is not a value of the sweep (its values: %s)"
+                             % (param, reference, ", ".join("%g" % v if numeric else v
+                                                            for v in values)))
+    ref = by_value[ref_value]
     ref_mean = mean(float(r[key]) * scale for r in ref.values())
     out = []
     for v in values:

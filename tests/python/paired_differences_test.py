@@ -55,6 +55,50 @@ class PairedDifferences(unittest.TestCase):
         self.assertEqual([r[0] for r in t], ["true", "false"])
         self.assertAlmostEqual(t[1][4], -20.0)  # (-10 - 30) / 2
 
+    def test_the_reference_can_be_a_value_in_the_middle(self):
+        # zeta 0.05, 0.1, 0.2 with the scene's 0.1 as the reference: 0.05 is 10 and 30 N/m below
+        # it on seeds 1 and 2 (mean -20, standard error 10 by hand, -20/150 of 0.1's mean), 0.2
+        # 10 above on both (standard error 0); the reference's own difference is 0.
+        rows = [row(0.05, 1, 90), row(0.05, 2, 170), row(0.1, 1, 100), row(0.1, 2, 200),
+                row(0.2, 1, 110), row(0.2, 2, 210)]
+        t = paired_differences.table(rows, "force_horizontal_mean_n_per_m", 1.0, reference="0.1")
+        self.assertEqual([r[0] for r in t], [0.05, 0.1, 0.2])
+        self.assertAlmostEqual(t[0][4], -20.0)
+        self.assertAlmostEqual(t[0][5], 10.0)
+        self.assertAlmostEqual(t[0][6], -20.0 / 150.0)
+        self.assertAlmostEqual(t[1][4], 0.0)
+        self.assertAlmostEqual(t[2][4], 10.0)
+        self.assertAlmostEqual(t[2][5], 0.0)
+        with self.assertRaises(ValueError):
+            paired_differences.table(rows, "force_horizontal_mean_n_per_m", 1.0, reference="0.3")
+
+    def test_reference_on_the_command_line(self):
+        import csv
+        import tempfile
+        with tempfile.TemporaryDirectory(dir=ARGS.tmp) as d:
+            path = os.path.join(d, "zeta.csv")
+            with open(path, "w", newline="") as f:
+                w = csv.DictWriter(f, fieldnames=FIELDS)
+                w.writeheader()
+                w.writerows([row(0.05, 1, 1000), row(0.05, 2, 3000), row(0.1, 1, 2000),
+                             row(0.1, 2, 4000)])
+            cmd = [os.path.join(ROOT, "scripts", "rockcut"), "paired", path]
+            out = subprocess.run(cmd + ["--reference", "0.1"], capture_output=True, text=True,
+                                 check=True).stdout
+            self.assertIn("difference from coupling.interval = 0.1", out)
+            self.assertIn("| 0.05 | 2 | 10.0 | 2.0 | -1.0 ± 0.0 (-33 %) | 0.25 |", out)
+            self.assertIn("| 0.1 | 2 | 10.0 | 3.0 |  | 0.25 |", out)
+            # A value the sweep does not have: one line naming the values it has, no table.
+            r = subprocess.run(cmd + ["--reference", "0.3"], capture_output=True, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("coupling.interval = 0.3 is not a value of the sweep (its values: 0.05, 0.1)",
+                          r.stderr)
+            self.assertNotIn("|", r.stdout)
+            r = subprocess.run(cmd + ["--reference", "0.1", "--against", path], capture_output=True,
+                               text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("give one of them", r.stderr)
+
     def test_two_sweeps_are_paired_run_by_run(self):
         # The same two values and seeds run twice, the second sweep 5 and 15 N/m lower at N = 1
         # (differences 5, 15: mean 10, standard error 5 by hand), a failed run and a seed the

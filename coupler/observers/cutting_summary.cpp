@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include "run/named_values_state.hpp"
@@ -67,23 +68,26 @@ void CuttingSummary::observe(const std::vector<std::pair<std::string, double>>& 
 
 void CuttingSummary::write(Summary& summary) const {
   if (!active_) return;
-  const double fh = samples_ ? sum_x_ / samples_ : 0.0;
-  const double fv = samples_ ? sum_y_ / samples_ : 0.0;
+  // A run that stopped before the steady part has no steady statistics: NaN, written as null, so
+  // that no 0 N/m is read as the rock's force (and sweep tables leave the run out).
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  const double n = static_cast<double>(samples_);
+  const double fh = samples_ ? sum_x_ / n : none;
+  const double fv = samples_ ? sum_y_ / n : none;
   summary.set("force_horizontal_mean_n_per_m", fh);
   summary.set("force_vertical_mean_n_per_m", fv);
   summary.set("force_horizontal_mean_n", fh * width_m_);
   summary.set("force_vertical_mean_n", fv * width_m_);
-  summary.set("force_horizontal_peak_n_per_m", peak_x_);
-  summary.set("force_horizontal_p95_n_per_m", quantile(steady_fh_, 0.95));
-  summary.set("force_horizontal_std_n_per_m", standard_deviation(steady_fh_));
+  summary.set("force_horizontal_peak_n_per_m", samples_ ? peak_x_ : none);
+  summary.set("force_horizontal_p95_n_per_m", samples_ ? quantile(steady_fh_, 0.95) : none);
+  summary.set("force_horizontal_std_n_per_m", samples_ ? standard_deviation(steady_fh_) : none);
   summary.set("specific_energy_mpa", fh / cut_depth_m_ * 1e-6);
-  summary.set("tool_contact_fraction",
-              samples_ ? static_cast<double>(in_contact_) / static_cast<double>(samples_) : 0.0);
+  summary.set("tool_contact_fraction", samples_ ? static_cast<double>(in_contact_) / n : none);
   // While cutting: a sample without contact has a force of exactly 0, so the sums over all samples
-  // are the sums over the contact samples.
+  // are the sums over the contact samples. Without a contact sample there is no such mean.
   const double contact = static_cast<double>(in_contact_);
-  summary.set("force_horizontal_mean_in_contact_n_per_m", in_contact_ ? sum_x_ / contact : 0.0);
-  summary.set("force_vertical_mean_in_contact_n_per_m", in_contact_ ? sum_y_ / contact : 0.0);
+  summary.set("force_horizontal_mean_in_contact_n_per_m", in_contact_ ? sum_x_ / contact : none);
+  summary.set("force_vertical_mean_in_contact_n_per_m", in_contact_ ? sum_y_ / contact : none);
   summary.set("steady_samples", static_cast<std::int64_t>(samples_));
   summary.set("steady_after_m", steady_after_m_);
   for (const char* key : {"breaks_tensile", "breaks_shear", "chips"}) {
@@ -92,7 +96,7 @@ void CuttingSummary::write(Summary& summary) const {
   if (const double* v = find_value(last_, "chip_area_mean_m2")) summary.set("chip_area_mean_m2", *v);
   for (const NodeMean& node : nodes_) {
     summary.set("pressure_" + node.name + "_mean_pa",
-                node.samples ? node.sum_pa / static_cast<double>(node.samples) : 0.0);
+                node.samples ? node.sum_pa / static_cast<double>(node.samples) : none);
     summary.set("pressure_" + node.name + "_samples", static_cast<std::int64_t>(node.samples));
   }
 }

@@ -43,7 +43,8 @@ def run_case(coupler, scene, out, extra):
     for key in ("force_horizontal_mean_n_per_m", "force_vertical_mean_n_per_m", "breaks_tensile",
                 "breaks_shear", "energy_imbalance_rel", "wall_time_s", "peclet_number",
                 "failure_guard", "failure_time_s"):
-        row[key] = summary.get(key, "")
+        value = summary.get(key)  # null: a run stopped before its steady part has no mean
+        row[key] = "" if value is None else value
     imbalance = summary.get("energy_imbalance_rel")
     if p.returncode == 0:
         ok = imbalance is None or imbalance < IMBALANCE_BOUND

@@ -113,7 +113,7 @@ class Sweep:
         found = {k: self.column(k) for k in keys}
         missing = [k for k, c in found.items() if c is None]
         if missing:
-            note(f"{figure}: no run's summary has {', '.join(missing)}; "
+            note(f"{figure}: no run's summary has a value of {', '.join(missing)}; "
                  + ("left out of it" if len(missing) < len(keys) else "not drawn"))
         return {k: c for k, c in found.items() if c is not None}
 

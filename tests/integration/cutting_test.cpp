@@ -203,6 +203,30 @@ struct BadParameter {
   std::string field;  // the field the message must name
 };
 
+TEST(Cutting, ARunStoppedBeforeTheSteadyPartWritesNullForItsStatistics) {
+  // The small cut's 7 mm of travel never reaches a steady part set at 20 mm: no steady sample, so
+  // no steady force, peak or contact share. summary.json says null (read back as NaN), not 0 N/m,
+  // and the analytical models' ratios to the DEM's forces are null with them; what the run did
+  // measure (breaks, the energy) is still there.
+  const CouplerRun r = run_small_cut("no_steady_part", {"--set", "dem.tool.steady_after_m=0.02"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string json = read_file(r.out / "summary.json");
+  EXPECT_NE(json.find("\"force_horizontal_peak_n_per_m\": null"), std::string::npos) << json;
+  const Summary s = coupler::read_summary(r.out / "summary.json");
+  EXPECT_EQ(number(s, "steady_samples"), 0);
+  for (const char* key :
+       {"force_horizontal_mean_n_per_m", "force_vertical_mean_n_per_m", "force_horizontal_mean_n",
+        "force_horizontal_peak_n_per_m", "force_horizontal_p95_n_per_m",
+        "force_horizontal_std_n_per_m", "specific_energy_mpa", "tool_contact_fraction",
+        "force_horizontal_mean_in_contact_n_per_m", "analytical_evans_ratio_peak",
+        "analytical_evans_ratio_mean"}) {
+    EXPECT_TRUE(std::isnan(number(s, key))) << key;
+  }
+  EXPECT_TRUE(std::isfinite(number(s, "analytical_evans_force_horizontal_n_per_m")));
+  EXPECT_GT(number(s, "breaks_tensile") + number(s, "breaks_shear"), 0);
+  EXPECT_LT(number(s, "energy_imbalance_rel"), 0.02);
+}
+
 TEST(Cutting, BadDemParametersAreRefusedBeforeTheRun) {
   const std::vector<BadParameter> cases = {
       // Each bound alone is valid: only the DEM, when it builds the specimen, sees the pair.

@@ -45,6 +45,15 @@ class PairedDifferences(unittest.TestCase):
         self.assertEqual(n, 2)          # seeds 1 and 4 completed
         self.assertAlmostEqual(d, 50.0)  # only seed 1 has a partner
 
+    def test_a_run_without_a_steady_part_is_left_out(self):
+        # summary.json's null (the run stopped before its steady part) is an empty cell in
+        # sweep.csv: no force, so no difference for that seed, and not a 0 N/m one.
+        rows = [row(1, 1, 100), row(1, 2, 200), row(3, 1, 150), row(3, 2, "")]
+        _, n, _, m, d, _, _, _ = paired_differences.table(rows, "force_horizontal_mean_n_per_m", 1.0)[1]
+        self.assertEqual(n, 1)
+        self.assertAlmostEqual(m, 150.0)
+        self.assertAlmostEqual(d, 50.0)
+
     def test_a_switch_is_paired_in_the_sweeps_order(self):
         # `--vary fluid.open_water_drag=false,true`: values that are not numbers keep the order
         # they first appear in (the first is the reference), whatever their alphabetical order.

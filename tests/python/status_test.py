@@ -26,8 +26,11 @@ class StatusAndCollect(unittest.TestCase):
     def setUpClass(cls):
         cls.out = os.path.join(ARGS.tmp, "status")
         shutil.rmtree(cls.out, ignore_errors=True)
+        # The steady part from 1 mm, so that the short runs have forces to draw (a run that
+        # stops before its steady part has none: null in summary.json).
         r = subprocess.run([ROCKCUT, "sweep", CASE, "--vary", f"{NAME}=0.5,1", "--set",
-                            "time.end_time_s=0.004", "--jobs", "2", "--out", cls.out,
+                            "time.end_time_s=0.004", "--set", "dem.tool.steady_after_m=0.001",
+                            "--jobs", "2", "--out", cls.out,
                             "--coupler", ARGS.coupler], capture_output=True, text=True, timeout=120)
         assert r.returncode == 0, r.stdout + r.stderr
         # Four more values in the plan, as a sweep that is still going would leave them.

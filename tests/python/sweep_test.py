@@ -25,8 +25,10 @@ class SweepWithSeeds(unittest.TestCase):
         cls.out = os.path.join(ARGS.tmp, "sweep_seeds")
         shutil.rmtree(cls.out, ignore_errors=True)
         cls.run_ = subprocess.run(
+            # The steady part from 1 mm: these short runs have forces to draw.
             [*SWEEP, CASE, "--vary", "dem.tool.velocity_m_s=0.5,1", "--seeds", "3,5",
-             "--set", "time.end_time_s=0.004", "--jobs", "2", "--out", cls.out,
+             "--set", "time.end_time_s=0.004", "--set", "dem.tool.steady_after_m=0.001",
+             "--jobs", "2", "--out", cls.out,
              "--coupler", ARGS.coupler],
             capture_output=True, text=True, timeout=240)
 

@@ -65,14 +65,25 @@ std::vector<StabilityLimit> PorePressureModel::limits() const {
                      " Pa; binds only N > 1",
                  /*lag_only=*/true, /*remedy=*/"use coupling.fluid_force \"extrapolated\"",
                  LimitKind::pore_fluid_stiffness});
-  // Without contact stiffness no grain vibrates on a contact: the held limit stands.
+  // Without contact stiffness no grain vibrates on a contact: the held limit stands. Without
+  // local damping the cut's own dissipation counts as a dashpot ratio zeta_0
+  // (kFluidIntrinsicDampingRatio, measured so); under local damping the limit was measured
+  // without it.
   const double k_n = params_.normal_stiffness_pa;
+  const bool intrinsic = !(params_.local_damping > 0.0);
+  const double extrapolated_held_dt =
+      intrinsic ? held_dt + kFluidViscousC * kFluidIntrinsicDampingRatio *
+                                std::sqrt(m_min * k_n) / stiffness
+                : held_dt;
   const double extrapolated_dt =
-      k_n > 0.0 ? kFluidExtrapolatedC * std::cbrt(held_dt * m_min / k_n) : held_dt;
+      k_n > 0.0 ? kFluidExtrapolatedC * std::cbrt(extrapolated_held_dt * m_min / k_n) : held_dt;
   out.push_back({"pore_fluid_stiffness_extrapolated", extrapolated_dt,
                  "extrapolated fluid force: C_x cbrt(dt_held m_min / k_n) with C_x = " +
-                     fmt(kFluidExtrapolatedC) + ", dt_held = " + fmt(held_dt) + " s, k_n = " +
-                     fmt(k_n) + " Pa; binds only N > 1",
+                     fmt(kFluidExtrapolatedC) + ", dt_held = " + fmt(extrapolated_held_dt) +
+                     (intrinsic ? " s (zeta + zeta_0, zeta_0 = " +
+                                      fmt(kFluidIntrinsicDampingRatio) + " the cut's own damping)"
+                                : std::string(" s")) +
+                     ", k_n = " + fmt(k_n) + " Pa; binds only N > 1",
                  /*lag_only=*/true, /*remedy=*/{}, LimitKind::pore_fluid_stiffness_extrapolated});
   return out;
 }

@@ -300,6 +300,18 @@ TEST(FluidService, TakesTheSolidPropertiesFromTheProtocol) {
   wire::FluidConfig heavier_dashpots = dashpots;
   heavier_dashpots.mutable_solid()->set_grain_density_kg_m3(4.0 * base.solid().grain_density_kg_m3());
   EXPECT_NEAR(stiffness_limit_s(init_with(heavier_dashpots).reply, kExtrapolated) / dx0, 2.0, 1e-14);
+  // Without local damping the cut's own damping, zeta_0 = 0.0095 (measured: docs/model.md), adds
+  // to the dashpots' zeta: the limit's cube goes as zeta + zeta_0, so with no damping at all the
+  // limit is cbrt(0.0095 / 0.1095) of zeta 0.1's and not nothing, at zeta 0.005 cbrt(0.0145 /
+  // 0.1095) of it.
+  wire::FluidConfig undamped = dashpots;
+  undamped.mutable_solid()->set_viscous_damping_ratio(0.0);
+  EXPECT_NEAR(stiffness_limit_s(init_with(undamped).reply, kExtrapolated) / dx0,
+              std::cbrt(0.0095 / 0.1095), 1e-12);
+  wire::FluidConfig light = dashpots;
+  light.mutable_solid()->set_viscous_damping_ratio(0.005);
+  EXPECT_NEAR(stiffness_limit_s(init_with(light).reply, kExtrapolated) / dx0,
+              std::cbrt(0.0145 / 0.1095), 1e-12);
   // Under local damping (alpha_d 0.7, no dashpots) the line does worse than the held force.
   ASSERT_EQ(base.solid().viscous_damping_ratio(), 0.0);
   wire::FluidConfig local = base;

@@ -1,10 +1,13 @@
 """Paired differences over specimen seeds in a rockcut sweep CSV (docs/record/accuracy.md,
 "The coupling interval over sixteen seeds").
 
-  rockcut paired SWEEP_CSV [--key force_horizontal_mean_n_per_m] [--scale 1e-3] [--reference V]
-  rockcut paired SWEEP_CSV --against OTHER_CSV [--key ...]
+  rockcut paired SWEEP_CSV [SWEEP_CSV ...] [--key force_horizontal_mean_n_per_m] [--scale 1e-3] [--reference V]
+  rockcut paired SWEEP_CSV [SWEEP_CSV ...] --against OTHER_CSV [--key ...]
 
 SWEEP_CSV is a sweep's sweep.csv, run with --seeds: its first column is the varied parameter.
+Several are read as one sweep: the same sweep run in batches of seeds (`--seeds 1,...,8`, then
+`--seeds 9,...,16`), which must vary the same parameter; a value and seed run in two of them is
+refused, naming both.
 Every value is run on the same specimens, so its difference from the reference value (the first,
 smallest, unless --reference names another: the scene's own setting, say) is taken seed by seed;
 the mean of those differences and its standard error resolve a change that the seeds' own spread
@@ -20,6 +23,7 @@ relative to OTHER_CSV's mean), and the shear fractions.
 """
 import argparse
 import csv
+import os
 import sys
 
 from .stats import against_table, paired_table
@@ -43,9 +47,36 @@ def read_rows(path, key):
     return rows
 
 
+def read_sweeps(paths, key):
+    """The rows of several sweep.csv files of one varied parameter, as one sweep; exits with one
+    line if they vary different parameters or two of them hold the same value and seed."""
+    rows, param, scene, where = [], None, None, {}
+    for path in paths:
+        these = read_rows(path, key)
+        name = next(iter(these[0]))
+        # A sweep run from another checkout names its scene by another path: the file's name says.
+        this_scene = os.path.basename(these[0].get("scene", ""))
+        if param is None:
+            param, scene = name, this_scene
+        elif name != param:
+            sys.exit("rockcut paired: %s varies %s, %s varies %s: not one sweep"
+                     % (paths[0], param, path, name))
+        elif this_scene != scene:
+            sys.exit("rockcut paired: %s ran %s, %s ran %s: not one sweep"
+                     % (paths[0], scene or "no scene", path, this_scene or "no scene"))
+        for r in these:
+            run = (r[param], r["seed"])
+            if run in where:
+                sys.exit("rockcut paired: %s = %s, seed %s is in %s and in %s: give each run once"
+                         % (param, run[0], run[1], where[run], path))
+            where[run] = path
+        rows += these
+    return rows
+
+
 def main(argv):
     ap = argparse.ArgumentParser(prog="rockcut paired", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("csv")
+    ap.add_argument("csv", nargs="+", help="a sweep's sweep.csv; several: one sweep run in batches of seeds")
     ap.add_argument("--key", default="force_horizontal_mean_n_per_m")
     ap.add_argument("--scale", type=float, default=1e-3)
     ap.add_argument("--against", metavar="OTHER_CSV",
@@ -56,17 +87,18 @@ def main(argv):
     if a.against and a.reference is not None:
         sys.exit("rockcut paired: --reference pairs values of one sweep; --against pairs two "
                  "sweeps run by run: give one of them")
-    rows = read_rows(a.csv, a.key)
+    rows = read_sweeps(a.csv, a.key)
+    sweep = " ".join(a.csv)
     param = next(iter(rows[0]))
     if a.against:
         other = read_rows(a.against, a.key)
         if next(iter(other[0])) != param:
             sys.exit("rockcut paired: %s varies %s, %s varies %s: nothing to pair"
-                     % (a.csv, param, a.against, next(iter(other[0]))))
+                     % (sweep, param, a.against, next(iter(other[0]))))
         t = against_table(rows, other, a.key, a.scale)
         if not t:
             sys.exit("rockcut paired: no run of %s has a partner of the same value and seed in %s"
-                     % (a.csv, a.against))
+                     % (sweep, a.against))
         print("| %s | pairs | %s | against | difference | shear fraction, against |" % (param, a.key))
         print("|---:|---:|---:|---:|---:|---:|")
         for v, n, m_a, m_b, d, e, rel, sh_a, sh_b in t:
@@ -82,7 +114,7 @@ def main(argv):
           % (param, a.key, ref_name))
     print("|---:|---:|---:|---:|---:|---:|")
     if not t:
-        sys.exit("rockcut paired: %s has no completed run" % a.csv)
+        sys.exit("rockcut paired: %s has no completed run" % sweep)
     ref_value = t[0][0]
     if a.reference is not None:
         ref_value = float(a.reference) if isinstance(ref_value, float) else a.reference

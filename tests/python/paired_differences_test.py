@@ -153,6 +153,40 @@ class PairedDifferences(unittest.TestCase):
             self.assertIn("nothing to pair", r.stderr)
             self.assertNotIn("|", r.stdout)
 
+    def test_batches_of_seeds_are_read_as_one_sweep(self):
+        # The same sweep run for seeds 1-2, then seed 3: by hand as in the first test, the second
+        # value 10, 20 and 30 N/m above the first, mean 20, standard error 10 / sqrt(3) = 5.8.
+        import csv
+        import tempfile
+        fields = FIELDS + ["scene"]
+        with tempfile.TemporaryDirectory(dir=ARGS.tmp) as d:
+            def write(name, rows, scene="cases/cutting/cut.pbtxt"):
+                path = os.path.join(d, name)
+                with open(path, "w", newline="") as f:
+                    w = csv.DictWriter(f, fieldnames=fields)
+                    w.writeheader()
+                    w.writerows([dict(r, scene=scene) for r in rows])
+                return path
+            first = write("s12.csv", [row(1, 1, 100), row(1, 2, 200), row(3, 1, 110),
+                                      row(3, 2, 220)])
+            # The second batch ran from another checkout: its scene's path differs, not its name.
+            second = write("s3.csv", [row(1, 3, 300), row(3, 3, 330)], "/elsewhere/cases/cutting/cut.pbtxt")
+            cmd = [os.path.join(ROOT, "scripts", "rockcut"), "paired", "--scale", "1"]
+            out = subprocess.run(cmd + [first, second], capture_output=True, text=True,
+                                 check=True).stdout
+            self.assertIn("| 3 | 3 | 10.0 | 220.0 | +20.0 ± 5.8 (+10 %) | 0.25 |", out)
+            # A run given twice is refused, naming both files; no table.
+            r = subprocess.run(cmd + [first, second, first], capture_output=True, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("coupling.interval = 1, seed 1 is in %s and in %s" % (first, first), r.stderr)
+            self.assertNotIn("|", r.stdout)
+            # So is a batch of another scene, even on other seeds.
+            other = write("other.csv", [row(1, 4, 1), row(3, 4, 2)], "cases/cutting/other.pbtxt")
+            r = subprocess.run(cmd + [first, other], capture_output=True, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("ran cut.pbtxt, %s ran other.pbtxt: not one sweep" % other, r.stderr)
+            self.assertNotIn("|", r.stdout)
+
     def test_the_committed_study_gives_the_documented_table(self):
         # docs/accuracy.md quotes N = 3 at 0 m over sixteen seeds as +7.1 ± 5.4 kN/m (+9 %), N = 10
         # as +31.6 ± 5.5 kN/m (+42 %) and N = 7, run on seeds 1-8 only, as +25.0 ± 8.6 kN/m: the

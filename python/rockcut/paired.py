@@ -2,12 +2,12 @@
 "The coupling interval over sixteen seeds").
 
   rockcut paired SWEEP_CSV [SWEEP_CSV ...] [--key force_horizontal_mean_n_per_m] [--scale 1e-3] [--reference V]
-  rockcut paired SWEEP_CSV [SWEEP_CSV ...] --against OTHER_CSV [--key ...]
+  rockcut paired SWEEP_CSV [SWEEP_CSV ...] --against OTHER_CSV [OTHER_CSV ...] [--key ...]
 
 SWEEP_CSV is a sweep's sweep.csv, run with --seeds: its first column is the varied parameter.
 Several are read as one sweep: the same sweep run in batches of seeds (`--seeds 1,...,8`, then
 `--seeds 9,...,16`), which must vary the same parameter; a value and seed run in two of them is
-refused, naming both.
+refused, naming both. OTHER_CSV, likewise.
 Every value is run on the same specimens, so its difference from the reference value (the first,
 smallest, unless --reference names another: the scene's own setting, say) is taken seed by seed;
 the mean of those differences and its standard error resolve a change that the seeds' own spread
@@ -79,7 +79,7 @@ def main(argv):
     ap.add_argument("csv", nargs="+", help="a sweep's sweep.csv; several: one sweep run in batches of seeds")
     ap.add_argument("--key", default="force_horizontal_mean_n_per_m")
     ap.add_argument("--scale", type=float, default=1e-3)
-    ap.add_argument("--against", metavar="OTHER_CSV",
+    ap.add_argument("--against", metavar="OTHER_CSV", nargs="+",
                     help="pair each run with the run of the same value and seed in this sweep")
     ap.add_argument("--reference", metavar="VALUE",
                     help="the value the others are differenced from (default: the first)")
@@ -91,14 +91,15 @@ def main(argv):
     sweep = " ".join(a.csv)
     param = next(iter(rows[0]))
     if a.against:
-        other = read_rows(a.against, a.key)
+        other = read_sweeps(a.against, a.key)
+        others = " ".join(a.against)
         if next(iter(other[0])) != param:
             sys.exit("rockcut paired: %s varies %s, %s varies %s: nothing to pair"
-                     % (sweep, param, a.against, next(iter(other[0]))))
+                     % (sweep, param, others, next(iter(other[0]))))
         t = against_table(rows, other, a.key, a.scale)
         if not t:
             sys.exit("rockcut paired: no run of %s has a partner of the same value and seed in %s"
-                     % (sweep, a.against))
+                     % (sweep, others))
         print("| %s | pairs | %s | against | difference | shear fraction, against |" % (param, a.key))
         print("|---:|---:|---:|---:|---:|---:|")
         for v, n, m_a, m_b, d, e, rel, sh_a, sh_b in t:

@@ -175,6 +175,13 @@ class PairedDifferences(unittest.TestCase):
             out = subprocess.run(cmd + [first, second], capture_output=True, text=True,
                                  check=True).stdout
             self.assertIn("| 3 | 3 | 10.0 | 220.0 | +20.0 ± 5.8 (+10 %) | 0.25 |", out)
+            # Batches against batches: the same runs 5, 10 and 15 N/m lower at N = 3 pair as one
+            # sweep against one (mean 10, standard error 5 / sqrt(3) = 2.9).
+            lower = [write("l12.csv", [row(3, 1, 105), row(3, 2, 210)]),
+                     write("l3.csv", [row(3, 3, 315)])]
+            out = subprocess.run(cmd + [first, second, "--against"] + lower, capture_output=True,
+                                 text=True, check=True).stdout
+            self.assertIn("| 3 | 3 | 220.0 | 210.0 | +10.0 ± 2.9 (+5 %) | 0.25, 0.25 |", out)
             # A run given twice is refused, naming both files; no table.
             r = subprocess.run(cmd + [first, second, first], capture_output=True, text=True)
             self.assertNotEqual(r.returncode, 0)

@@ -6,7 +6,7 @@
 
 SWEEP_CSV is a sweep's sweep.csv, run with --seeds: its first column is the varied parameter.
 Several are read as one sweep: the same sweep run in batches of seeds (`--seeds 1,...,8`, then
-`--seeds 9,...,16`), which must vary the same parameter; a value and seed run in two of them is
+`--seeds 9,...,16`), which must vary the same parameter on the same scene; a value and seed run in two of them is
 refused, naming both. OTHER_CSV, likewise.
 Every value is run on the same specimens, so its difference from the reference value (the first,
 smallest, unless --reference names another: the scene's own setting, say) is taken seed by seed;

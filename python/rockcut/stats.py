@@ -42,14 +42,9 @@ def run_shear_fraction(row):
     return shear_fraction(float(row["breaks_tensile"]), float(row["breaks_shear"]))
 
 
-def paired_table(rows, key, scale=1.0, reference=None):
-    """Paired differences over seeds from sweep.csv rows (dicts of strings; the first column is the
-    varied parameter): [(value, runs, mean wall time, mean of key, mean difference from the
-    reference value taken seed by seed, its standard error, relative to the reference's mean, mean
-    shear fraction)]. The reference is the first value unless `reference` (a string, compared as a
-    number where the values are numbers) names another; a reference that is not a value of the
-    sweep raises ValueError. Failed runs and seeds without a partner are left out of a
-    difference."""
+def _seeds_by_value(rows, key, reference=None):
+    """(values in table order, {value: {seed: row}}, the reference value) of a sweep's completed
+    runs (paired_table says the order and the reference)."""
     param = next(iter(rows[0])) if rows else None
     kept = completed_runs(rows, key)
     # Numbers in ascending order; anything else (`--vary fluid.open_water_drag=false,true`) in the
@@ -64,7 +59,7 @@ def paired_table(rows, key, scale=1.0, reference=None):
     for v, r in zip(value_of, kept):
         by_value[v][r["seed"]] = r
     if not by_value:
-        return []
+        return [], by_value, None
     values = sorted(by_value) if numeric else list(by_value)
     ref_value = values[0]
     if reference is not None:
@@ -73,6 +68,20 @@ def paired_table(rows, key, scale=1.0, reference=None):
             raise ValueError("%s = %s is not a value of the sweep (its values: %s)"
                              % (param, reference, ", ".join("%g" % v if numeric else v
                                                             for v in values)))
+    return values, by_value, ref_value
+
+
+def paired_table(rows, key, scale=1.0, reference=None):
+    """Paired differences over seeds from sweep.csv rows (dicts of strings; the first column is the
+    varied parameter): [(value, runs, mean wall time, mean of key, mean difference from the
+    reference value taken seed by seed, its standard error, relative to the reference's mean, mean
+    shear fraction)]. The reference is the first value unless `reference` (a string, compared as a
+    number where the values are numbers) names another; a reference that is not a value of the
+    sweep raises ValueError. Failed runs and seeds without a partner are left out of a
+    difference."""
+    values, by_value, ref_value = _seeds_by_value(rows, key, reference)
+    if not values:
+        return []
     ref = by_value[ref_value]
     ref_mean = mean(float(r[key]) * scale for r in ref.values())
     out = []
@@ -87,13 +96,36 @@ def paired_table(rows, key, scale=1.0, reference=None):
     return out
 
 
-def against_table(rows, other_rows, key, scale=1.0):
-    """Two sweeps of the same values and seeds, one with a change (an option set, another build),
-    paired run by run: [(value, pairs, mean of key in rows, in other_rows, mean difference rows -
-    other_rows over the pairs, its standard error, relative to other_rows' mean, shear fraction in
-    rows, in other_rows)], one per value of the first column, in ascending order when numbers.
-    A run pairs with the run of the same value and seed; failed runs and runs without a partner
-    are left out."""
+def median(xs):
+    xs = sorted(xs)
+    n = len(xs)
+    if not n:
+        return math.nan
+    return xs[n // 2] if n % 2 else 0.5 * (xs[n // 2 - 1] + xs[n // 2])
+
+
+def sign_counts(diffs):
+    """(median, how many below zero, how many above) of paired differences: what a mean moved by a
+    few large pairs does not show."""
+    return median(diffs), sum(d < 0 for d in diffs), sum(d > 0 for d in diffs)
+
+
+def paired_signs(rows, key, scale=1.0, reference=None):
+    """The seed-by-seed differences from the reference value as paired_table takes them, summed up
+    by their signs: [(value, pairs, median difference, pairs below, pairs above)], in
+    paired_table's order (the reference's own row with no pairs)."""
+    values, by_value, ref_value = _seeds_by_value(rows, key, reference)
+    out = []
+    for v in values:
+        runs, ref = by_value[v], by_value[ref_value]
+        diffs = [] if v == ref_value else [(float(runs[s][key]) - float(ref[s][key])) * scale
+                                           for s in runs if s in ref]
+        out.append((v, len(diffs)) + sign_counts(diffs))
+    return out
+
+
+def _run_pairs(rows, other_rows, key):
+    """(values in table order, {value: [(row, other row)]}) for against_table."""
     def index(rs):
         param = next(iter(rs[0])) if rs else None
         return {(r[param], r["seed"]): r for r in completed_runs(rs, key)}
@@ -110,6 +142,17 @@ def against_table(rows, other_rows, key, scale=1.0):
         order.sort(key=float)
     except ValueError:
         pass
+    return order, pairs
+
+
+def against_table(rows, other_rows, key, scale=1.0):
+    """Two sweeps of the same values and seeds, one with a change (an option set, another build),
+    paired run by run: [(value, pairs, mean of key in rows, in other_rows, mean difference rows -
+    other_rows over the pairs, its standard error, relative to other_rows' mean, shear fraction in
+    rows, in other_rows)], one per value of the first column, in ascending order when numbers.
+    A run pairs with the run of the same value and seed; failed runs and runs without a partner
+    are left out."""
+    order, pairs = _run_pairs(rows, other_rows, key)
     out = []
     for v in order:
         a = [float(p[0][key]) * scale for p in pairs[v]]
@@ -120,3 +163,11 @@ def against_table(rows, other_rows, key, scale=1.0):
                     mean(run_shear_fraction(p[0]) for p in pairs[v]),
                     mean(run_shear_fraction(p[1]) for p in pairs[v])))
     return out
+
+
+def against_signs(rows, other_rows, key, scale=1.0):
+    """against_table's run-by-run differences summed up by their signs: [(value, pairs, median
+    difference, pairs below, pairs above)]."""
+    order, pairs = _run_pairs(rows, other_rows, key)
+    return [(v, len(pairs[v])) + sign_counts([(float(a[key]) - float(b[key])) * scale
+                                               for a, b in pairs[v]]) for v in order]

@@ -194,6 +194,40 @@ class PairedDifferences(unittest.TestCase):
             self.assertIn("ran cut.pbtxt, %s ran other.pbtxt: not one sweep" % other, r.stderr)
             self.assertNotIn("|", r.stdout)
 
+    def test_signs_show_a_mean_moved_by_a_tail(self):
+        # Five seeds whose differences are -1, -2, +3, -4 and +100 N/m: the mean, +19.2, is the
+        # tail's; by hand the median is -1 and three pairs lie below, two above. Against a second
+        # sweep the same differences give the same columns.
+        import csv
+        import tempfile
+        diffs = [-1, -2, 3, -4, 100]
+        rows = [row(1, s, 1000 * s) for s in range(1, 6)] + \
+               [row(3, s, 1000 * s + d) for s, d in zip(range(1, 6), diffs)]
+        signs = stats.paired_signs(rows, "force_horizontal_mean_n_per_m")
+        self.assertEqual(signs[0][:2], (1.0, 0))
+        self.assertEqual(signs[1], (3.0, 5, -1.0, 3, 2))
+        self.assertEqual(stats.sign_counts([-1, 2, 3, -4]), (0.5, 2, 2))  # even count: the middle two
+        with tempfile.TemporaryDirectory(dir=ARGS.tmp) as d:
+            a, b = os.path.join(d, "a.csv"), os.path.join(d, "b.csv")
+            for path, rs in ((a, rows), (b, [row(3, s, 1000 * s) for s in range(1, 6)])):
+                with open(path, "w", newline="") as f:
+                    w = csv.DictWriter(f, fieldnames=FIELDS)
+                    w.writeheader()
+                    w.writerows(rs)
+            cmd = [os.path.join(ROOT, "scripts", "rockcut"), "paired", a, "--scale", "1", "--signs"]
+            out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+            self.assertIn("| median difference | below / above |", out)
+            self.assertIn("| 1 | 5 | 10.0 | 3000.0 |  | 0.25 | | |", out)
+            self.assertIn("| 3 | 5 | 10.0 | 3019.2 | +19.2 ± 20.2 (+1 %) | 0.25 | -1.0 | 3 / 2 of 5 |",
+                          out)
+            out = subprocess.run(cmd + ["--against", b], capture_output=True, text=True,
+                                 check=True).stdout
+            self.assertIn("| 3 | 5 | 3019.2 | 3000.0 | +19.2 ± 20.2 (+1 %) | 0.25, 0.25 | -1.0 | "
+                          "3 / 2 of 5 |", out)
+            # Without --signs the table is as before.
+            out = subprocess.run(cmd[:-1], capture_output=True, text=True, check=True).stdout
+            self.assertNotIn("below", out)
+
     def test_the_committed_study_gives_the_documented_table(self):
         # docs/accuracy.md quotes N = 3 at 0 m over sixteen seeds as +7.1 ± 5.4 kN/m (+9 %), N = 10
         # as +31.6 ± 5.5 kN/m (+42 %) and N = 7, run on seeds 1-8 only, as +25.0 ± 8.6 kN/m: the

@@ -1,6 +1,7 @@
 """Statistics over runs: means, standard errors, paired differences over specimen seeds."""
 import collections
 import math
+import statistics
 
 
 def mean(xs):
@@ -88,7 +89,7 @@ def paired_table(rows, key, scale=1.0, reference=None):
     for v in values:
         runs = by_value[v]
         x = [float(r[key]) * scale for r in runs.values()]
-        diffs = [(float(runs[s][key]) - float(ref[s][key])) * scale for s in runs if s in ref]
+        diffs = _seed_differences(runs, ref, key, scale)
         d = mean(diffs)
         out.append((v, len(runs), mean(float(r["wall_time_s"]) for r in runs.values()), mean(x),
                     d, sem(diffs), d / ref_mean if ref_mean else math.nan,
@@ -96,18 +97,21 @@ def paired_table(rows, key, scale=1.0, reference=None):
     return out
 
 
-def median(xs):
-    xs = sorted(xs)
-    n = len(xs)
-    if not n:
-        return math.nan
-    return xs[n // 2] if n % 2 else 0.5 * (xs[n // 2 - 1] + xs[n // 2])
+def _seed_differences(runs, ref, key, scale):
+    """key in `runs` less key in `ref` (both {seed: row}), times scale, for the seeds of both."""
+    return [(float(runs[s][key]) - float(ref[s][key])) * scale for s in runs if s in ref]
+
+
+def _pair_differences(pairs, key, scale):
+    """key in each (row, other row) pair's row less its other's, times scale."""
+    return [(float(a[key]) - float(b[key])) * scale for a, b in pairs]
 
 
 def sign_counts(diffs):
     """(median, how many below zero, how many above) of paired differences: what a mean moved by a
     few large pairs does not show."""
-    return median(diffs), sum(d < 0 for d in diffs), sum(d > 0 for d in diffs)
+    return (statistics.median(diffs) if diffs else math.nan, sum(d < 0 for d in diffs),
+            sum(d > 0 for d in diffs))
 
 
 def paired_signs(rows, key, scale=1.0, reference=None):
@@ -117,9 +121,8 @@ def paired_signs(rows, key, scale=1.0, reference=None):
     values, by_value, ref_value = _seeds_by_value(rows, key, reference)
     out = []
     for v in values:
-        runs, ref = by_value[v], by_value[ref_value]
-        diffs = [] if v == ref_value else [(float(runs[s][key]) - float(ref[s][key])) * scale
-                                           for s in runs if s in ref]
+        diffs = [] if v == ref_value else _seed_differences(by_value[v], by_value[ref_value], key,
+                                                            scale)
         out.append((v, len(diffs)) + sign_counts(diffs))
     return out
 
@@ -157,7 +160,7 @@ def against_table(rows, other_rows, key, scale=1.0):
     for v in order:
         a = [float(p[0][key]) * scale for p in pairs[v]]
         b = [float(p[1][key]) * scale for p in pairs[v]]
-        diffs = [x - y for x, y in zip(a, b)]
+        diffs = _pair_differences(pairs[v], key, scale)
         d, m_b = mean(diffs), mean(b)
         out.append((v, len(diffs), mean(a), m_b, d, sem(diffs), d / m_b if m_b else math.nan,
                     mean(run_shear_fraction(p[0]) for p in pairs[v]),
@@ -169,5 +172,5 @@ def against_signs(rows, other_rows, key, scale=1.0):
     """against_table's run-by-run differences summed up by their signs: [(value, pairs, median
     difference, pairs below, pairs above)]."""
     order, pairs = _run_pairs(rows, other_rows, key)
-    return [(v, len(pairs[v])) + sign_counts([(float(a[key]) - float(b[key])) * scale
-                                               for a, b in pairs[v]]) for v in order]
+    return [(v, len(pairs[v])) + sign_counts(_pair_differences(pairs[v], key, scale))
+            for v in order]

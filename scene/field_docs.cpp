@@ -119,6 +119,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "Drag of the still free water on the grains that meet it (the drained ones: the free surface, chips and thrown grains), which the pressure of eq. 21 alone does not give: each is a cylinder in cross flow, F = -1/2 rho_w C_d (2 r) |v| v with C_d = 1 + 10 Re^(-2/3) (White's fit), rho_w `water_density_kg_m3` and mu `viscosity_pa_s`; the velocity is the mean over the last coupling interval (fluid_module/sp/open_water_drag.hpp, docs/model.md \"Drag in open water\"). Off: the paper's model, in which a thrown grain keeps its speed."},
     {"rockcut.Fluid.permeability_m2",
      "Intrinsic permeability kappa of eq. 12."},
+    {"rockcut.Fluid.point_spacing",
+     "The pore-pressure model's points, in grain spacings apart. 1: a point at every grain (the paper). Above 1 the model runs on fewer points than grains, about point_spacing^2 grains to a point: the grains nearest the nodes of a lattice this many mean grain spacings apart, each point a fixed positive weighted mean of the grains around it (centred on it), moving as their mean, its force handed back to them by the same weights, which keeps the fluid's work on the grains exact (fluid_module/sp/point_restriction.hpp). The smoothing length grows by the points' measured spacing over the grains' (sqrt(grains / points)): the pressure is resolved on that scale, and the fluid's step costs about that ratio squared less (docs/model.md, \"Fewer fluid points than grains\"). Not with `open_water_drag`, which acts on single grains."},
     {"rockcut.Fluid.prescribed_gradient",
      "Parameters of the `prescribed_gradient` model."},
     {"rockcut.Fluid.sealed_sides",

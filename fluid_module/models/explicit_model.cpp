@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "models/fluid_points_model.hpp"
 #include "models/registry.hpp"
 #include "sp/cavitation.hpp"
 #include "sp/format.hpp"
@@ -57,8 +58,11 @@ void ExplicitModel::advance(double dt_s) {
 namespace rockcut::fluid {
 namespace {
 // Registered by name at static initialisation (models/registry.hpp); the archive is linked whole.
+// On fewer points than grains with fluid.point_spacing > 1 (models/fluid_points_model.hpp).
 const bool registered = register_model("explicit", [](const wire::FluidConfig& config) {
-  return std::make_unique<sp::ExplicitModel>(sp::sp_params_from_config(config));
+  return sp::pore_pressure_model(sp::sp_params_from_config(config), [](const sp::SpParams& p) {
+    return std::unique_ptr<sp::PorePressureModel>(std::make_unique<sp::ExplicitModel>(p));
+  });
 });
 }  // namespace
 }  // namespace rockcut::fluid

@@ -1,5 +1,6 @@
 #include "models/implicit_model.hpp"
 
+#include "models/fluid_points_model.hpp"
 #include "models/registry.hpp"
 #include "sp/format.hpp"
 
@@ -32,8 +33,11 @@ void ImplicitModel::add_scalars(std::vector<std::pair<std::string, double>>& out
 namespace rockcut::fluid {
 namespace {
 // Registered by name at static initialisation (models/registry.hpp); the archive is linked whole.
+// On fewer points than grains with fluid.point_spacing > 1 (models/fluid_points_model.hpp).
 const bool registered = register_model("implicit", [](const wire::FluidConfig& config) {
-  return std::make_unique<sp::ImplicitModel>(sp::sp_params_from_config(config));
+  return sp::pore_pressure_model(sp::sp_params_from_config(config), [](const sp::SpParams& p) {
+    return std::unique_ptr<sp::PorePressureModel>(std::make_unique<sp::ImplicitModel>(p));
+  });
 });
 }  // namespace
 }  // namespace rockcut::fluid

@@ -39,25 +39,32 @@ std::vector<std::string> PorePressureModel::needs() const {
 std::vector<StabilityLimit> PorePressureModel::limits() const {
   std::vector<StabilityLimit> out = {diffusion_limit()};
   out.back().kind = LimitKind::diffusion;
+  if (radius_.empty()) return out;
+  const double r_min = *std::min_element(radius_.begin(), radius_.end());
+  add_stiffness_limits(params_, r_min, out);
+  return out;
+}
+
+void PorePressureModel::add_stiffness_limits(const SpParams& params, double r_min_m,
+                                             std::vector<StabilityLimit>& out) {
   // The pore fluid's stiffness under a lagged force (DESIGN section 5; see kFluidStiffnessC),
   // only when the DEM moves the particles by the fluid force.
-  const double stiffness = params_.alpha * params_.bulk_modulus_pa;  // k_f [Pa]
-  if (!params_.dynamic_solid || radius_.empty() || !(stiffness > 0.0)) return out;
-  const double r_min = *std::min_element(radius_.begin(), radius_.end());
-  const double m_min = params_.grain_density_kg_m3 * std::numbers::pi * r_min * r_min;
-  const double local_dt = kFluidStiffnessC * params_.local_damping * std::sqrt(m_min / stiffness);
-  const double viscous_dt = kFluidViscousC * params_.viscous_damping_ratio *
-                            std::sqrt(m_min * params_.normal_stiffness_pa) / stiffness;
+  const double stiffness = params.alpha * params.bulk_modulus_pa;  // k_f [Pa]
+  if (!params.dynamic_solid || !(stiffness > 0.0)) return;
+  const double m_min = params.grain_density_kg_m3 * std::numbers::pi * r_min_m * r_min_m;
+  const double local_dt = kFluidStiffnessC * params.local_damping * std::sqrt(m_min / stiffness);
+  const double viscous_dt = kFluidViscousC * params.viscous_damping_ratio *
+                            std::sqrt(m_min * params.normal_stiffness_pa) / stiffness;
   std::string formula = "lagged fluid force: ";
-  if (params_.viscous_damping_ratio > 0.0) {
+  if (params.viscous_damping_ratio > 0.0) {
     formula += "C alpha_d sqrt(m_min / (alpha M)) + C_v zeta sqrt(m_min k_n) / (alpha M) with C = " +
-               fmt(kFluidStiffnessC) + ", local damping alpha_d = " + fmt(params_.local_damping) +
+               fmt(kFluidStiffnessC) + ", local damping alpha_d = " + fmt(params.local_damping) +
                ", C_v = " + fmt(kFluidViscousC) + ", dashpots zeta = " +
-               fmt(params_.viscous_damping_ratio) + ", k_n = " + fmt(params_.normal_stiffness_pa) +
+               fmt(params.viscous_damping_ratio) + ", k_n = " + fmt(params.normal_stiffness_pa) +
                " Pa";
   } else {
     formula += "C alpha_d sqrt(m_min / (alpha M)) with C = " + fmt(kFluidStiffnessC) +
-               ", local damping alpha_d = " + fmt(params_.local_damping);
+               ", local damping alpha_d = " + fmt(params.local_damping);
   }
   const double held_dt = local_dt + viscous_dt;
   out.push_back({"pore_fluid_stiffness", held_dt,
@@ -69,8 +76,8 @@ std::vector<StabilityLimit> PorePressureModel::limits() const {
   // local damping the cut's own dissipation counts as a dashpot ratio zeta_0
   // (kFluidIntrinsicDampingRatio, measured so); under local damping the limit was measured
   // without it.
-  const double k_n = params_.normal_stiffness_pa;
-  const bool intrinsic = !(params_.local_damping > 0.0);
+  const double k_n = params.normal_stiffness_pa;
+  const bool intrinsic = !(params.local_damping > 0.0);
   const double extrapolated_held_dt =
       intrinsic ? held_dt + kFluidViscousC * kFluidIntrinsicDampingRatio *
                                 std::sqrt(m_min * k_n) / stiffness
@@ -85,7 +92,6 @@ std::vector<StabilityLimit> PorePressureModel::limits() const {
                                 : std::string(" s")) +
                      ", k_n = " + fmt(k_n) + " Pa; binds only N > 1",
                  /*lag_only=*/true, /*remedy=*/{}, LimitKind::pore_fluid_stiffness_extrapolated});
-  return out;
 }
 
 bool PorePressureModel::probe(std::span<const double> position, const ProbeBox& box,

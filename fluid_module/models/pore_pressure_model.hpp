@@ -88,6 +88,10 @@ class PorePressureModel : public FluidModel {
   const wire::PhaseClock* phases() const override { return &phases_; }
   /// The model's diffusion limit, then the pore fluid's stiffness limit (when the DEM is dynamic).
   std::vector<StabilityLimit> limits() const final;
+  /// Appends the pore fluid's stiffness limits (held, then extrapolated) for the lightest grain of
+  /// radius r_min_m, when the DEM moves the particles by the fluid force.
+  static void add_stiffness_limits(const SpParams& params, double r_min_m,
+                                   std::vector<StabilityLimit>& out);
   /// Power of the open water's drag in the last step [W/m] (0 without fluid.open_water_drag).
   double drag_power_w_per_m() const { return drag_power_w_per_m_; }
   bool probe(std::span<const double> position, const ProbeBox& box, double& mean_pa,

@@ -23,6 +23,13 @@ SpParams sp_params_from_config(const wire::FluidConfig& config) {
   p.viscosity_pa_s = f.viscosity_pa_s();
   p.water_density_kg_m3 = f.water_density_kg_m3();
   p.open_water_drag = f.open_water_drag();
+  p.point_spacing = f.point_spacing();
+  if (p.point_spacing > 1.0 && p.open_water_drag) {
+    throw std::invalid_argument(
+        "fluid.open_water_drag acts on single grains and fluid.point_spacing = " +
+        std::to_string(p.point_spacing) +
+        " puts the pore fluid on points of several grains; use one of them");
+  }
   // Section 3.3: p_hydro = p_atm + rho_w g H. The pressure is absolute.
   p.p_hydro_pa = f.atmospheric_pressure_pa() +
                  f.water_density_kg_m3() * f.gravity_m_s2() * config.water_depth_m();

@@ -28,6 +28,8 @@ struct SpParams {
   double viscosity_pa_s = 1e-3;        ///< mu
   double water_density_kg_m3 = 1025.0; ///< rho_w of the free water
   bool open_water_drag = false;        ///< sp/open_water_drag.hpp on the drained grains
+  /// The points' spacing in grain spacings (fluid.point_spacing; 1: a point at every grain).
+  double point_spacing = 1.0;
   double p_hydro_pa = 101325.0;        ///< p_atm + rho_w g H
   double surface_div_r = 1.5;          ///< eq. 24 threshold
   std::array<bool, 4> sealed{};        ///< left, right, bottom, top (Sides order)

@@ -74,7 +74,7 @@ sp::SpParams table1(double h_m, std::array<bool, 4> sealed) {
   return s;
 }
 
-Driver::Driver(sp::PorePressureModel& model, const Particles& p)
+Driver::Driver(FluidModel& model, const Particles& p)
     : model_(model), x_(p.position), d_(p.position.size(), 0.0), v_(p.position.size(), 0.0),
       force_(p.position.size(), 0.0) {
   model_.initialise({p.radius, p.position});

@@ -65,7 +65,7 @@ struct Initialised {
 /// dem.prescribed_motion does, sending positions and displacements.
 class Driver {
  public:
-  Driver(sp::PorePressureModel& model, const Particles& p);
+  Driver(FluidModel& model, const Particles& p);
   /// One fluid step of dt at the given strain rates [1/s].
   void step(double dt_s, double exx_per_s = 0.0, double eyy_per_s = 0.0);
   const std::vector<double>& force() const { return force_; }
@@ -73,7 +73,7 @@ class Driver {
   double time_s() const { return t_; }
 
  private:
-  sp::PorePressureModel& model_;
+  FluidModel& model_;
   std::vector<double> x_, d_, v_, force_;
   double t_ = 0.0;
 };

@@ -1,0 +1,193 @@
+#include "models/fluid_points_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "sp/format.hpp"
+
+namespace rockcut::fluid::sp {
+
+namespace {
+
+void check_size(std::span<const double> a, std::size_t expected, const char* what) {
+  if (a.size() != expected) {
+    throw std::invalid_argument(std::string("fluid points: ") + what + " has " +
+                                std::to_string(a.size()) + " values, expected " +
+                                std::to_string(expected));
+  }
+}
+
+SpParams with_smoothing_length(SpParams params, double h_m) {
+  params.h_m = h_m;
+  return params;
+}
+
+}  // namespace
+
+FluidPointsModel::FluidPointsModel(const SpParams& params, PorePressureFactory make)
+    : params_(params), make_(std::move(make)),
+      // Until initialise() has counted the points, a model at the nominal spacing answers needs().
+      points_(make_(with_smoothing_length(params, params.h_m * params.point_spacing))) {}
+
+void FluidPointsModel::initialise(const StaticData& data) {
+  const std::size_t n = data.radius.size();
+  check_size(data.position, 2 * n, "the initial position");
+  if (n == 0) throw std::invalid_argument("fluid points: no grains");
+  grain_r_min_m_ = *std::min_element(data.radius.begin(), data.radius.end());
+  // The grains' mean spacing, sqrt(area / grains) over their bounding box.
+  double x0 = data.position[0], x1 = x0, y0 = data.position[1], y1 = y0;
+  for (std::size_t i = 0; i < n; ++i) {
+    x0 = std::min(x0, data.position[2 * i]);
+    x1 = std::max(x1, data.position[2 * i]);
+    y0 = std::min(y0, data.position[2 * i + 1]);
+    y1 = std::max(y1, data.position[2 * i + 1]);
+  }
+  const double grain_spacing = std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(n));
+  if (!(grain_spacing > 0.0)) {
+    throw std::invalid_argument("fluid.point_spacing needs grains spread over an area");
+  }
+  const double spacing = params_.point_spacing * grain_spacing;
+  restriction_.emplace(data.position, spacing, kPointSupportOverSpacing * spacing);
+  const PointRestriction& r = *restriction_;
+  const std::size_t points = r.points();
+
+  // Each grain's area is shared among the points that reach it in proportion to their weights,
+  // so that the points hold the grains' area between them (the SP volumes start from it).
+  std::vector<double> area_share(n), point_area(points), point_radius(points);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!(r.column_sum()[j] > 0.0)) {
+      throw std::logic_error("fluid points: grain " + std::to_string(j) + " is reached by no point");
+    }
+    area_share[j] = std::numbers::pi * data.radius[j] * data.radius[j] / r.column_sum()[j];
+  }
+  r.restrict_to_points(area_share, point_area, 1);
+  for (std::size_t p = 0; p < points; ++p) point_radius[p] = std::sqrt(point_area[p] / std::numbers::pi);
+  point_position_.resize(2 * points);
+  r.restrict_to_points(data.position, point_position_, 2);
+  // A point sits at its grain and moves as its grains' mean: x_p = R x + (x_g^0 - R x^0).
+  position_offset_.resize(2 * points);
+  for (std::size_t p = 0; p < points; ++p) {
+    for (int c = 0; c < 2; ++c) {
+      const std::size_t g = static_cast<std::size_t>(r.point_grain()[p]);
+      position_offset_[2 * p + c] = data.position[2 * g + c] - point_position_[2 * p + c];
+      point_position_[2 * p + c] += position_offset_[2 * p + c];
+    }
+  }
+
+  // h grows by the points' spacing over the grains', measured: sqrt(grains / points).
+  const double h_points =
+      params_.h_m * std::sqrt(static_cast<double>(n) / static_cast<double>(points));
+  points_ = make_(with_smoothing_length(params_, h_points));
+  points_->initialise({point_radius, point_position_});
+  point_displacement_.assign(2 * points, 0.0);
+  point_velocity_.assign(2 * points, 0.0);
+  point_force_.assign(2 * points, 0.0);
+}
+
+std::vector<StabilityLimit> FluidPointsModel::limits() const {
+  std::vector<StabilityLimit> out;
+  for (const StabilityLimit& l : points_->limits()) {
+    if (l.kind != LimitKind::diffusion) continue;
+    out.push_back(l);
+    if (restriction_) {
+      out.back().detail += " (on " + std::to_string(restriction_->points()) + " points for " +
+                           std::to_string(restriction_->grains()) + " grains)";
+    }
+  }
+  PorePressureModel::add_stiffness_limits(params_, grain_r_min_m_, out);
+  return out;
+}
+
+void FluidPointsModel::step(double dt_s, double time_s, const Kinematics& k,
+                            std::span<double> force) {
+  if (!restriction_) throw std::logic_error("fluid points: step before initialise");
+  const PointRestriction& r = *restriction_;
+  const std::size_t n = r.grains();
+  check_size(k.position, 2 * n, "position");
+  check_size(force, 2 * n, "force");
+  Kinematics points;
+  r.restrict_to_points(k.position, point_position_, 2);
+  for (std::size_t m = 0; m < point_position_.size(); ++m) point_position_[m] += position_offset_[m];
+  points.position = point_position_;
+  if (!k.displacement.empty()) {
+    check_size(k.displacement, 2 * n, "displacement");
+    r.restrict_to_points(k.displacement, point_displacement_, 2);
+    points.displacement = point_displacement_;
+  }
+  if (!k.velocity_half.empty()) {
+    check_size(k.velocity_half, 2 * n, "velocity_half");
+    r.restrict_to_points(k.velocity_half, point_velocity_, 2);
+    points.velocity_half = point_velocity_;
+  }
+  points.wall_segments = k.wall_segments;
+  points_->step(dt_s, time_s, points, point_force_);
+  r.spread_to_grains(point_force_, force, 2);
+}
+
+void FluidPointsModel::output(const std::string& field, std::vector<double>& values) const {
+  const PointRestriction& r = *restriction_;
+  points_->output(field, point_values_);
+  if (point_values_.size() != r.points()) {
+    throw std::invalid_argument("fluid points: field '" + field + "' is not one value per point");
+  }
+  values.resize(r.grains());
+  if (field == "boundary") {
+    // A class does not average: each grain shows its main point's.
+    for (std::size_t j = 0; j < r.grains(); ++j) values[j] = point_values_[r.main_point()[j]];
+  } else {
+    r.interpolate_to_grains(point_values_, values);
+  }
+}
+
+bool FluidPointsModel::probe(std::span<const double> position, const ProbeBox& box,
+                             double& mean_pa, std::size_t& count) const {
+  // Over the grains in the box, each with the pressure its points give it.
+  const PointRestriction& r = *restriction_;
+  const auto pressure = points_->pressure();
+  point_values_.assign(pressure.begin(), pressure.end());
+  std::vector<double> grain_pressure(r.grains());
+  r.interpolate_to_grains(point_values_, grain_pressure);
+  double sum = 0.0;
+  count = 0;
+  for (std::size_t j = 0; j < r.grains() && 2 * j + 1 < position.size(); ++j) {
+    const double x = position[2 * j], y = position[2 * j + 1];
+    if (x < box.x_min_m || x > box.x_max_m || y < box.y_min_m || y > box.y_max_m) continue;
+    sum += grain_pressure[j] - params_.p_hydro_pa;
+    ++count;
+  }
+  mean_pa = count ? sum / static_cast<double>(count) : 0.0;
+  return true;
+}
+
+void FluidPointsModel::scalars(std::vector<std::pair<std::string, double>>& out) const {
+  points_->scalars(out);
+  out.emplace_back("points", static_cast<double>(restriction_ ? restriction_->points() : 0));
+}
+
+void FluidPointsModel::save_state(state::StateArchive& archive) const {
+  points_->save_state(archive);
+  archive.put_scalar("points", static_cast<double>(restriction_->points()));
+}
+
+void FluidPointsModel::load_state(const state::StateArchive& archive) {
+  const std::size_t points = restriction_->points();
+  if (!archive.has("points") || archive.scalar_as<std::size_t>("points") != points) {
+    throw state::StateError(
+        "the state is of a pore fluid on " +
+        (archive.has("points") ? std::to_string(archive.scalar_as<std::size_t>("points")) +
+                                     " points"
+                               : std::string("every grain")) +
+        ", this run's has " + std::to_string(points) + " (fluid.point_spacing)");
+  }
+  points_->load_state(archive);
+}
+
+std::unique_ptr<FluidModel> pore_pressure_model(const SpParams& params,
+                                                const PorePressureFactory& make) {
+  if (params.point_spacing > 1.0) return std::make_unique<FluidPointsModel>(params, make);
+  return make(params);
+}
+
+}  // namespace rockcut::fluid::sp

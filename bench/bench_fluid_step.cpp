@@ -10,6 +10,10 @@
 //                      (0.002 h): the geometry is computed once, so this is the step alone
 //                      (divergence with the Laplacian, update, adjoint force), on 1 and 2 threads
 //   step_passes        the two passes over the pairs of that step alone, on 1 and 2 threads
+//   points/reused      explicit/reused on fewer points than grains (fluid.point_spacing 1.5, 2,
+//                      3; 1 is the model on every grain): the step with the grains' motion
+//                      restricted to the points and the force spread back
+//   point_restriction  those two products alone (positions in, forces out), 2 values per grain
 //   implicit           backward Euler at 1, 20 and 100 times the explicit limit
 //   neighbour_build    the cell-list rebuild alone;  geometry  the per-step SP geometry alone
 //   geometry_refresh   a geometry update with the step's coefficients, full (patch_mm:0) or local
@@ -32,6 +36,7 @@
 #include <vector>
 
 #include "models/explicit_model.hpp"
+#include "models/fluid_points_model.hpp"
 #include "models/implicit_model.hpp"
 #include "sp/step_operator.hpp"
 
@@ -170,6 +175,48 @@ void explicit_reused(benchmark::State& state) {
       static_cast<double>(m.geometry_updates()) / static_cast<double>(state.iterations());
 }
 
+// state.range(0): fluid.point_spacing x 10; particles at rest, the geometry reused, one thread.
+void points_reused(benchmark::State& state) {
+  sp::SpParams p = params();
+  p.geometry_refresh = 0.002;
+  p.point_spacing = static_cast<double>(state.range(0)) / 10.0;
+  const auto model = sp::pore_pressure_model(p, [](const sp::SpParams& q) {
+    return std::unique_ptr<sp::PorePressureModel>(std::make_unique<sp::ExplicitModel>(q));
+  });
+  omp_set_num_threads(1);
+  const Packing& pack = packing(true);
+  const std::size_t n = pack.radius.size();
+  std::vector<double> x = pack.position, d(2 * n, 0.0), v(2 * n, 0.0), force(2 * n);
+  model->initialise({pack.radius, pack.position});
+  model->step(0.0, 0.0, {x, v, d, {}}, force);
+  const double dt = sp::ExplicitModel(p).dt_max_s();
+  double t = 0.0;
+  for (auto _ : state) {
+    t += dt;
+    model->step(dt, t, {x, v, d, {}}, force);
+    benchmark::DoNotOptimize(force.data());
+  }
+  per_particle(state, n);
+}
+
+// state.range(0): fluid.point_spacing x 10. The restriction of the positions and the spread of
+// the forces alone, one thread.
+void point_restriction(benchmark::State& state) {
+  const Packing& pack = packing(true);
+  const std::size_t n = pack.radius.size();
+  const double spacing = static_cast<double>(state.range(0)) / 10.0 * std::sqrt(0.2 * 0.1 / n);
+  const sp::PointRestriction r(pack.position, pack.radius, spacing);
+  omp_set_num_threads(1);
+  std::vector<double> xp(2 * r.points()), force(2 * n);
+  for (auto _ : state) {
+    r.restrict_to_points(pack.position, xp, 2);
+    r.spread_to_grains(xp, force, 2);
+    benchmark::DoNotOptimize(force.data());
+  }
+  per_particle(state, n);
+  state.counters["grains/point"] = static_cast<double>(n) / static_cast<double>(r.points());
+}
+
 // state.range(1): the step in multiples of the explicit limit.
 void implicit_step(benchmark::State& state) {
   sp::ImplicitModel m(params());
@@ -285,6 +332,10 @@ BENCHMARK(explicit_reused)->Name("explicit/reused")->ArgNames({"cell_ordered", "
     ->Args({1, 1})->Args({1, 2})->Unit(benchmark::kMillisecond);
 BENCHMARK(step_passes)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(points_reused)->Name("points/reused")->ArgName("spacing_x10")->Arg(10)->Arg(15)->Arg(20)
+    ->Arg(30)->Unit(benchmark::kMillisecond);
+BENCHMARK(point_restriction)->ArgName("spacing_x10")->Arg(15)->Arg(20)->Arg(30)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(implicit_step)->Name("implicit")->ArgNames({"cell_ordered", "dt_x_explicit"})
     ->Args({1, 1})->Args({1, 20})->Args({1, 100})->Args({0, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(neighbour_build)->ArgName("cell_ordered")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);

@@ -48,33 +48,16 @@ void FluidPointsModel::initialise(const StaticData& data) {
   if (!(grain_spacing > 0.0)) {
     throw std::invalid_argument("fluid.point_spacing needs grains spread over an area");
   }
-  const double spacing = params_.point_spacing * grain_spacing;
-  restriction_.emplace(data.position, spacing, kPointSupportOverSpacing * spacing);
+  restriction_.emplace(data.position, data.radius, params_.point_spacing * grain_spacing);
   const PointRestriction& r = *restriction_;
   const std::size_t points = r.points();
-
-  // Each grain's area is shared among the points that reach it in proportion to their weights,
-  // so that the points hold the grains' area between them (the SP volumes start from it).
-  std::vector<double> area_share(n), point_area(points), point_radius(points);
-  for (std::size_t j = 0; j < n; ++j) {
-    if (!(r.column_sum()[j] > 0.0)) {
-      throw std::logic_error("fluid points: grain " + std::to_string(j) + " is reached by no point");
-    }
-    area_share[j] = std::numbers::pi * data.radius[j] * data.radius[j] / r.column_sum()[j];
+  // A point stands for its cluster's area (the SP volumes start from it).
+  std::vector<double> point_radius(points);
+  for (std::size_t p = 0; p < points; ++p) {
+    point_radius[p] = std::sqrt(r.area_m2()[p] / std::numbers::pi);
   }
-  r.restrict_to_points(area_share, point_area, 1);
-  for (std::size_t p = 0; p < points; ++p) point_radius[p] = std::sqrt(point_area[p] / std::numbers::pi);
   point_position_.resize(2 * points);
   r.restrict_to_points(data.position, point_position_, 2);
-  // A point sits at its grain and moves as its grains' mean: x_p = R x + (x_g^0 - R x^0).
-  position_offset_.resize(2 * points);
-  for (std::size_t p = 0; p < points; ++p) {
-    for (int c = 0; c < 2; ++c) {
-      const std::size_t g = static_cast<std::size_t>(r.point_grain()[p]);
-      position_offset_[2 * p + c] = data.position[2 * g + c] - point_position_[2 * p + c];
-      point_position_[2 * p + c] += position_offset_[2 * p + c];
-    }
-  }
 
   // h grows by the points' spacing over the grains', measured: sqrt(grains / points).
   const double h_points =
@@ -109,7 +92,6 @@ void FluidPointsModel::step(double dt_s, double time_s, const Kinematics& k,
   check_size(force, 2 * n, "force");
   Kinematics points;
   r.restrict_to_points(k.position, point_position_, 2);
-  for (std::size_t m = 0; m < point_position_.size(); ++m) point_position_[m] += position_offset_[m];
   points.position = point_position_;
   if (!k.displacement.empty()) {
     check_size(k.displacement, 2 * n, "displacement");
@@ -133,22 +115,16 @@ void FluidPointsModel::output(const std::string& field, std::vector<double>& val
     throw std::invalid_argument("fluid points: field '" + field + "' is not one value per point");
   }
   values.resize(r.grains());
-  if (field == "boundary") {
-    // A class does not average: each grain shows its main point's.
-    for (std::size_t j = 0; j < r.grains(); ++j) values[j] = point_values_[r.main_point()[j]];
-  } else {
-    r.interpolate_to_grains(point_values_, values);
-  }
+  r.show_on_grains(point_values_, values);
 }
 
 bool FluidPointsModel::probe(std::span<const double> position, const ProbeBox& box,
                              double& mean_pa, std::size_t& count) const {
-  // Over the grains in the box, each with the pressure its points give it.
+  // Over the grains in the box, each with its point's pressure.
   const PointRestriction& r = *restriction_;
   const auto pressure = points_->pressure();
-  point_values_.assign(pressure.begin(), pressure.end());
   std::vector<double> grain_pressure(r.grains());
-  r.interpolate_to_grains(point_values_, grain_pressure);
+  r.show_on_grains(pressure, grain_pressure);
   double sum = 0.0;
   count = 0;
   for (std::size_t j = 0; j < r.grains() && 2 * j + 1 < position.size(); ++j) {

@@ -1,8 +1,9 @@
 // A pore-pressure model (`explicit` or `implicit`) run on fewer points than grains
-// (fluid.point_spacing > 1; docs/model.md, "Fewer fluid points than grains"). The grains' motion
-// is restricted to the points and the points' force spread back by the transpose
-// (sp/point_restriction.hpp); the model on the points is the paper's, with the smoothing length
-// grown by the points' measured spacing over the grains'. The DEM and the coupler see a model of
+// (fluid.point_spacing > 1; docs/model.md, "Fewer fluid points than grains"). Each point is the
+// centre of area of a fixed cluster of grains; the grains' motion is restricted to the points and
+// the points' force spread back by the transpose (sp/point_restriction.hpp); the model on the
+// points is the paper's, with the smoothing length grown by the points' measured spacing over the
+// grains'. The DEM and the coupler see a model of
 // the grains: every array in and out is per grain.
 #pragma once
 
@@ -14,11 +15,6 @@
 #include "sp/point_restriction.hpp"
 
 namespace rockcut::fluid::sp {
-
-/// The support of a point's weights over the points' spacing: above a node's farthest grain (at
-/// most half a diagonal plus a grain away), so that every grain is reached, and small, so that a
-/// point is the mean of the grains nearest it.
-inline constexpr double kPointSupportOverSpacing = 1.5;
 
 using PorePressureFactory = std::function<std::unique_ptr<PorePressureModel>(const SpParams&)>;
 
@@ -54,7 +50,6 @@ class FluidPointsModel final : public FluidModel {
   std::unique_ptr<PorePressureModel> points_;
   std::optional<PointRestriction> restriction_;
   double grain_r_min_m_ = 0.0;
-  std::vector<double> position_offset_;  // x_g^0 - R x^0 per point
   std::vector<double> point_position_, point_displacement_, point_velocity_, point_force_;
   mutable std::vector<double> point_values_;
 };

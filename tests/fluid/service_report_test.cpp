@@ -332,5 +332,42 @@ TEST(FluidService, TakesTheSolidPropertiesFromTheProtocol) {
   EXPECT_TRUE(diffusion);
 }
 
+// On fewer points than grains (fluid.point_spacing) the stiffness limits stay those of the
+// lightest grain, the diffusion limit is the points' (h grown by their spacing: about 4 times
+// the limit at twice the spacing) and says on how many points; a spacing below 1 and the open
+// water's drag, which acts on single grains, are refused by name.
+TEST(FluidService, OnPointsKeepsTheGrainsStiffnessLimitsAndRefusesTheDrag) {
+  const wire::FluidConfig base = fluid_config(saturated_reduced());
+  const InitAnswer grains = init_with(base);
+  ASSERT_EQ(grains.error, "");
+  wire::FluidConfig points = base;
+  points.mutable_fluid()->set_point_spacing(2.0);
+  const InitAnswer on_points = init_with(points);
+  ASSERT_EQ(on_points.error, "");
+  EXPECT_EQ(stiffness_limit_s(on_points.reply), stiffness_limit_s(grains.reply));
+  constexpr auto kDiffusion = wire::LIMIT_KIND_FLUID_DIFFUSION;
+  const double ratio = stiffness_limit_s(on_points.reply, kDiffusion) /
+                       stiffness_limit_s(grains.reply, kDiffusion);
+  EXPECT_GT(ratio, 3.0);  // (h_points / h)^2 = grains / points: about 4, 3.7-4.2 on this lattice
+  EXPECT_LT(ratio, 5.0);
+  bool named = false;
+  for (const wire::StabilityLimit& l : on_points.reply.limits()) {
+    named = named || l.detail().find(" points for 200 grains") != std::string::npos;
+  }
+  EXPECT_TRUE(named);
+
+  wire::FluidConfig below_one = base;
+  below_one.mutable_fluid()->set_point_spacing(0.5);
+  EXPECT_NE(init_with(below_one).error.find("fluid.point_spacing = 0.5 is out of range"),
+            std::string::npos)
+      << init_with(below_one).error;
+  wire::FluidConfig drag = points;
+  drag.mutable_fluid()->set_open_water_drag(true);
+  const std::string error = init_with(drag).error;
+  EXPECT_NE(error.find("fluid.open_water_drag acts on single grains and fluid.point_spacing"),
+            std::string::npos)
+      << error;
+}
+
 }  // namespace
 }  // namespace rockcut::fluid::test

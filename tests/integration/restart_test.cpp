@@ -201,6 +201,10 @@ INSTANTIATE_TEST_SUITE_P(
                       // N = 4: its line through the last two exchanges is state (the case
                       // above runs it too, on one thread and inproc).
                       Case{"saturated_reduced_long_viscous", "2", "ipc"},
+                      // The pore fluid on points of about four grains (its clusters are
+                      // rebuilt from the scene, its state is the points').
+                      Case{"saturated_reduced_long_viscous", "2", "ipc",
+                           {"--set", "fluid.point_spacing=2"}, "_points"},
                       // Servo-steered side walls and the biaxial summary's samples, over the
                       // failure peak (at about 1.9 ms), on a specimen half as wide and high.
                       Case{"calibration/biaxial", "2", "ipc",

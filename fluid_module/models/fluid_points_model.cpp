@@ -122,18 +122,9 @@ bool FluidPointsModel::probe(std::span<const double> position, const ProbeBox& b
                              double& mean_pa, std::size_t& count) const {
   // Over the grains in the box, each with its point's pressure.
   const PointRestriction& r = *restriction_;
-  const auto pressure = points_->pressure();
   std::vector<double> grain_pressure(r.grains());
-  r.show_on_grains(pressure, grain_pressure);
-  double sum = 0.0;
-  count = 0;
-  for (std::size_t j = 0; j < r.grains() && 2 * j + 1 < position.size(); ++j) {
-    const double x = position[2 * j], y = position[2 * j + 1];
-    if (x < box.x_min_m || x > box.x_max_m || y < box.y_min_m || y > box.y_max_m) continue;
-    sum += grain_pressure[j] - params_.p_hydro_pa;
-    ++count;
-  }
-  mean_pa = count ? sum / static_cast<double>(count) : 0.0;
+  r.show_on_grains(points_->pressure(), grain_pressure);
+  mean_excess_in_box(position, grain_pressure, params_.p_hydro_pa, box, mean_pa, count);
   return true;
 }
 

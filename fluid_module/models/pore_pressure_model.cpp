@@ -96,16 +96,22 @@ void PorePressureModel::add_stiffness_limits(const SpParams& params, double r_mi
 
 bool PorePressureModel::probe(std::span<const double> position, const ProbeBox& box,
                               double& mean_pa, std::size_t& count) const {
+  mean_excess_in_box(position, pressure_, params_.p_hydro_pa, box, mean_pa, count);
+  return true;
+}
+
+void mean_excess_in_box(std::span<const double> position, std::span<const double> pressure,
+                        double p_hydro_pa, const ProbeBox& box, double& mean_pa,
+                        std::size_t& count) {
   double sum = 0.0;
   count = 0;
-  for (std::size_t i = 0; i < pressure_.size() && 2 * i + 1 < position.size(); ++i) {
+  for (std::size_t i = 0; i < pressure.size() && 2 * i + 1 < position.size(); ++i) {
     const double x = position[2 * i], y = position[2 * i + 1];
     if (x < box.x_min_m || x > box.x_max_m || y < box.y_min_m || y > box.y_max_m) continue;
-    sum += pressure_[i] - params_.p_hydro_pa;
+    sum += pressure[i] - p_hydro_pa;
     ++count;
   }
   mean_pa = count ? sum / static_cast<double>(count) : 0.0;
-  return true;
 }
 
 std::vector<std::string> PorePressureModel::provides() const {

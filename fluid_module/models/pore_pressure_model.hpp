@@ -73,6 +73,12 @@ inline constexpr double kLocalMoveFraction = 0.5;
 /// which sweeps the rows in order without the rings' bookkeeping.
 inline constexpr double kLocalMaxFraction = 0.5;
 
+/// The mean of p - p_hydro [Pa] over the particles whose centre lies in `box`, and their count
+/// (FluidModel::probe).
+void mean_excess_in_box(std::span<const double> position, std::span<const double> pressure,
+                        double p_hydro_pa, const ProbeBox& box, double& mean_pa,
+                        std::size_t& count);
+
 class PorePressureModel : public FluidModel {
  public:
   explicit PorePressureModel(const SpParams& params);

@@ -61,7 +61,9 @@ PointRestriction::PointRestriction(std::span<const double> position,
     if (p == 0) p = static_cast<int>(m++);
   }
   point_of_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) point_of_[i] = point_of_node[static_cast<std::size_t>(node[i])];
+  for (std::size_t i = 0; i < n; ++i) {
+    point_of_[i] = point_of_node[static_cast<std::size_t>(node[i])];
+  }
 
   // The clusters in grain order and their weights a_j / A_p.
   cluster_start_.assign(m + 1, 0);
@@ -106,7 +108,9 @@ void PointRestriction::spread_to_grains(std::span<const double> point, std::span
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t j = 0; j < count; ++j) {
     const std::ptrdiff_t p = point_of_[j];
-    for (int c = 0; c < components; ++c) out[components * j + c] = weight_[j] * in[components * p + c];
+    for (int c = 0; c < components; ++c) {
+      out[components * j + c] = weight_[j] * in[components * p + c];
+    }
   }
 }
 

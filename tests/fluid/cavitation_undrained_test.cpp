@@ -37,13 +37,7 @@ TEST_P(BothModels, UndrainedCompressionGivesMinusAlphaMTimesTheVolumetricStrain)
   auto model = make(GetParam(), params);
   Driver drive(*model, random_packing());
   const double rate = -0.5, dt = 5e-6;  // [1/s] per axis: eps_v = -1e-5 per step
-  double expected = params.p_hydro_pa;
-  const double am = params.alpha * params.bulk_modulus_pa;
-  for (int k = 0; k < 20; ++k) {
-    drive.step(dt, rate, rate);
-    const double a = rate * dt;
-    expected += -am * 2.0 * a / (1.0 + a);
-  }
+  const double expected = compress_undrained(drive, params, rate, dt, 20);
   const double change = expected - params.p_hydro_pa;  // +1e5 Pa: compression raises p
   EXPECT_NEAR(change, 0.5 * 2e9 * 1e-4, 0.5 * 2e9 * 1e-4 * 1e-4);  // alpha M |eps_v|, to O(a)
   const double tolerance = GetParam() == "explicit" ? 1e-8 : 1e-7;

@@ -95,6 +95,18 @@ void Driver::step(double dt_s, double exx, double eyy) {
   model_.step(dt_s, t_, {x_, v_, d_, {}}, force_);
 }
 
+double compress_undrained(Driver& drive, const sp::SpParams& params, double rate_per_s,
+                          double dt_s, int steps) {
+  double expected = params.p_hydro_pa;
+  const double am = params.alpha * params.bulk_modulus_pa;
+  for (int k = 0; k < steps; ++k) {
+    drive.step(dt_s, rate_per_s, rate_per_s);
+    const double a = rate_per_s * dt_s;
+    expected += -am * 2.0 * a / (1.0 + a);
+  }
+  return expected;
+}
+
 void apply_laplacian(sp::LaplacianForm form, const sp::Geometry& geo, std::span<const double> a,
                      std::span<double> lap) {
   if (form == sp::LaplacianForm::consistent) {

@@ -78,4 +78,11 @@ class Driver {
   double t_ = 0.0;
 };
 
+/// Compresses the driven packing uniformly, `steps` steps of dt at `rate` per axis [1/s], and
+/// returns the undrained pressure that gives: p_hydro - alpha M sum d(eps_v), with
+/// d(eps_v) = 2 a / (1 + a) and a = rate dt, the CSPM divergence of the step's displacement on
+/// the new positions (exact for this linear field).
+double compress_undrained(Driver& drive, const sp::SpParams& params, double rate_per_s,
+                          double dt_s, int steps);
+
 }  // namespace rockcut::fluid::test

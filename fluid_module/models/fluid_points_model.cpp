@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "sp/format.hpp"
 
@@ -122,9 +123,9 @@ bool FluidPointsModel::probe(std::span<const double> position, const ProbeBox& b
                              double& mean_pa, std::size_t& count) const {
   // Over the grains in the box, each with its point's pressure.
   const PointRestriction& r = *restriction_;
-  std::vector<double> grain_pressure(r.grains());
-  r.show_on_grains(points_->pressure(), grain_pressure);
-  mean_excess_in_box(position, grain_pressure, params_.p_hydro_pa, box, mean_pa, count);
+  grain_values_.resize(r.grains());
+  r.show_on_grains(points_->pressure(), grain_values_);
+  mean_excess_in_box(position, grain_values_, params_.p_hydro_pa, box, mean_pa, count);
   return true;
 }
 

@@ -3,8 +3,7 @@
 // centre of area of a fixed cluster of grains; the grains' motion is restricted to the points and
 // the points' force spread back by the transpose (sp/point_restriction.hpp); the model on the
 // points is the paper's, with the smoothing length grown by the points' measured spacing over the
-// grains'. The DEM and the coupler see a model of
-// the grains: every array in and out is per grain.
+// grains'. The DEM and the coupler see a model of the grains: every array in and out is per grain.
 #pragma once
 
 #include <functional>
@@ -51,7 +50,7 @@ class FluidPointsModel final : public FluidModel {
   std::optional<PointRestriction> restriction_;
   double grain_r_min_m_ = 0.0;
   std::vector<double> point_position_, point_displacement_, point_velocity_, point_force_;
-  mutable std::vector<double> point_values_;
+  mutable std::vector<double> point_values_, grain_values_;  // output and pressure nodes
 };
 
 /// The model `make` builds, on points when params.point_spacing > 1.

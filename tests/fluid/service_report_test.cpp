@@ -355,6 +355,12 @@ TEST(FluidService, OnPointsKeepsTheGrainsStiffnessLimitsAndRefusesTheDrag) {
     named = named || l.detail().find(" points for 200 grains") != std::string::npos;
   }
   EXPECT_TRUE(named);
+  // The implicit model runs on points the same way.
+  wire::FluidConfig implicit = points;
+  implicit.mutable_fluid()->set_model("implicit");
+  const InitAnswer implicit_points = init_with(implicit);
+  ASSERT_EQ(implicit_points.error, "");
+  EXPECT_EQ(implicit_points.reply.model(), "implicit");
 
   wire::FluidConfig below_one = base;
   below_one.mutable_fluid()->set_point_spacing(0.5);

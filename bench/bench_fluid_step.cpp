@@ -204,8 +204,7 @@ void points_reused(benchmark::State& state) {
 void point_restriction(benchmark::State& state) {
   const Packing& pack = packing(true);
   const std::size_t n = pack.radius.size();
-  const double spacing = static_cast<double>(state.range(0)) / 10.0 * std::sqrt(0.2 * 0.1 / n);
-  const sp::PointRestriction r(pack.position, pack.radius, spacing);
+  const sp::PointRestriction r(pack.position, pack.radius, static_cast<double>(state.range(0)) / 10.0);
   omp_set_num_threads(1);
   std::vector<double> xp(2 * r.points()), force(2 * n);
   for (auto _ : state) {

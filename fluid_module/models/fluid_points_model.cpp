@@ -37,19 +37,7 @@ void FluidPointsModel::initialise(const StaticData& data) {
   check_size(data.position, 2 * n, "the initial position");
   if (n == 0) throw std::invalid_argument("fluid points: no grains");
   grain_r_min_m_ = *std::min_element(data.radius.begin(), data.radius.end());
-  // The grains' mean spacing, sqrt(area / grains) over their bounding box.
-  double x0 = data.position[0], x1 = x0, y0 = data.position[1], y1 = y0;
-  for (std::size_t i = 0; i < n; ++i) {
-    x0 = std::min(x0, data.position[2 * i]);
-    x1 = std::max(x1, data.position[2 * i]);
-    y0 = std::min(y0, data.position[2 * i + 1]);
-    y1 = std::max(y1, data.position[2 * i + 1]);
-  }
-  const double grain_spacing = std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(n));
-  if (!(grain_spacing > 0.0)) {
-    throw std::invalid_argument("fluid.point_spacing needs grains spread over an area");
-  }
-  restriction_.emplace(data.position, data.radius, params_.point_spacing * grain_spacing);
+  restriction_.emplace(data.position, data.radius, params_.point_spacing);
   const PointRestriction& r = *restriction_;
   const std::size_t points = r.points();
   // A point stands for its cluster's area (the SP volumes start from it).

@@ -21,12 +21,11 @@ void check_components(int components) {
 }  // namespace
 
 PointRestriction::PointRestriction(std::span<const double> position,
-                                   std::span<const double> radius, double spacing_m)
-    : spacing_m_(spacing_m) {
+                                   std::span<const double> radius, double spacing_grains) {
   const std::size_t n = radius.size();
-  if (!(spacing_m > 0.0) || position.size() != 2 * n || n == 0) {
-    throw std::invalid_argument("fluid points: a spacing of " + std::to_string(spacing_m) +
-                                " m over " + std::to_string(n) + " grains");
+  if (!(spacing_grains > 0.0) || position.size() != 2 * n || n == 0) {
+    throw std::invalid_argument("fluid points: a spacing of " + std::to_string(spacing_grains) +
+                                " grain spacings over " + std::to_string(n) + " grains");
   }
   double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -38,6 +37,12 @@ PointRestriction::PointRestriction(std::span<const double> position,
   if (!std::isfinite(x0 + x1 + y0 + y1)) {
     throw std::invalid_argument("fluid points: an initial position is not finite");
   }
+  grain_spacing_m_ = std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(n));
+  if (!(grain_spacing_m_ > 0.0)) {
+    throw std::invalid_argument("fluid.point_spacing needs grains spread over an area");
+  }
+  const double spacing_m = spacing_grains * grain_spacing_m_;
+  spacing_m_ = spacing_m;
   // The clusters: each grain joins the nearest node of a lattice whose spacing is the nearest to
   // spacing_m that puts nodes on all four sides; the nodes without grains hold no point.
   const auto intervals = [&](double length) {

@@ -1,8 +1,8 @@
 // Fluid points fewer than grains (fluid.point_spacing > 1): the pore-pressure model runs on points,
 // each the centre of area of a fixed cluster of grains, and hands its force back to them.
 //
-// Each grain joins the nearest node of a lattice about `spacing` apart over the initial packing's
-// bounding box, with nodes on its four sides (so that the clusters there, half and quarter ones,
+// Each grain joins the nearest node of a lattice about `spacing_grains` mean grain spacings
+// (sqrt(area / grains) over the initial packing's bounding box) apart over that box, with nodes on its four sides (so that the clusters there, half and quarter ones,
 // have their centres near the sides, where the pore fluid drains or is sealed), for good: a
 // point's cluster is a piece of material; a node without grains holds no point. With
 // a_j = pi r_j^2 and A_p the cluster's area, the weights are
@@ -28,13 +28,16 @@ namespace rockcut::fluid::sp {
 class PointRestriction {
  public:
   /// Chooses the points and their clusters on the initial packing (`position` interleaved x, y
-  /// [m], `radius` [m]). Throws std::invalid_argument for a non-positive spacing or positions
-  /// that are not finite.
+  /// [m], `radius` [m]), `spacing_grains` mean grain spacings apart. Throws
+  /// std::invalid_argument for a non-positive spacing, positions that are not finite, or grains
+  /// that do not span an area.
   PointRestriction(std::span<const double> position, std::span<const double> radius,
-                   double spacing_m);
+                   double spacing_grains);
 
   std::size_t points() const { return area_m2_.size(); }
   std::size_t grains() const { return point_of_.size(); }
+  /// The grains' mean spacing sqrt(area / grains) and the points' asked for [m].
+  double grain_spacing_m() const { return grain_spacing_m_; }
   double spacing_m() const { return spacing_m_; }
   /// The lattice's spacing in x and y [m].
   const double* node_spacing_m() const { return node_spacing_m_; }
@@ -55,7 +58,7 @@ class PointRestriction {
   void show_on_grains(std::span<const double> point, std::span<double> grain) const;
 
  private:
-  double spacing_m_;
+  double grain_spacing_m_ = 0.0, spacing_m_ = 0.0;
   double node_spacing_m_[2] = {0.0, 0.0};
   std::vector<int> point_of_;
   std::vector<double> weight_, area_m2_;

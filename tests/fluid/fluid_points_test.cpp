@@ -24,19 +24,8 @@ sp::PorePressureFactory explicit_factory() {
   };
 }
 
-/// The random packing's mean spacing, sqrt(area / grains) over its bounding box [m].
-double grain_spacing(const Particles& p) {
-  double x0 = p.x(0), x1 = x0, y0 = p.y(0), y1 = y0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    x0 = std::min(x0, p.x(i)), x1 = std::max(x1, p.x(i));
-    y0 = std::min(y0, p.y(i)), y1 = std::max(y1, p.y(i));
-  }
-  return std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(p.size()));
-}
-
 sp::PointRestriction restriction(const Particles& p, double point_spacing) {
-  const double d = point_spacing * grain_spacing(p);
-  return sp::PointRestriction(p.position, p.radius, d);
+  return sp::PointRestriction(p.position, p.radius, point_spacing);
 }
 
 TEST(PointRestriction, EveryGrainIsInOneClusterAndThePointsAreSpacingSquaredFewer) {

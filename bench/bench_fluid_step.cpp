@@ -204,7 +204,8 @@ void points_reused(benchmark::State& state) {
 void point_restriction(benchmark::State& state) {
   const Packing& pack = packing(true);
   const std::size_t n = pack.radius.size();
-  const sp::PointRestriction r(pack.position, pack.radius, static_cast<double>(state.range(0)) / 10.0);
+  const double spacing_grains = static_cast<double>(state.range(0)) / 10.0;
+  const sp::PointRestriction r(pack.position, pack.radius, spacing_grains);
   omp_set_num_threads(1);
   std::vector<double> xp(2 * r.points()), force(2 * n);
   for (auto _ : state) {

@@ -2,9 +2,10 @@
 // each the centre of area of a fixed cluster of grains, and hands its force back to them.
 //
 // Each grain joins the nearest node of a lattice about `spacing_grains` mean grain spacings
-// (sqrt(area / grains) over the initial packing's bounding box) apart over that box, with nodes on its four sides (so that the clusters there, half and quarter ones,
-// have their centres near the sides, where the pore fluid drains or is sealed), for good: a
-// point's cluster is a piece of material; a node without grains holds no point. With
+// (sqrt(area / grains) over the initial packing's bounding box) apart over that box, with nodes
+// on its four sides (so that the clusters there, half and quarter ones, have their centres near
+// the sides, where the pore fluid drains or is sealed), for good: a point's cluster is a piece
+// of material; a node without grains holds no point. With
 // a_j = pi r_j^2 and A_p the cluster's area, the weights are
 //   R_pj = a_j / A_p   (j in the cluster of p; sum_j R_pj = 1),
 // a point's position, displacement and velocity are its cluster's centre of area, and its mean

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "rockcut/wire.pb.h"
+#include "sp/format.hpp"
 
 namespace rockcut::fluid::sp {
 
@@ -27,7 +28,7 @@ SpParams sp_params_from_config(const wire::FluidConfig& config) {
   if (p.point_spacing > 1.0 && p.open_water_drag) {
     throw std::invalid_argument(
         "fluid.open_water_drag acts on single grains and fluid.point_spacing = " +
-        std::to_string(p.point_spacing) +
+        fmt(p.point_spacing) +
         " puts the pore fluid on points of several grains; use one of them");
   }
   // Section 3.3: p_hydro = p_atm + rho_w g H. The pressure is absolute.

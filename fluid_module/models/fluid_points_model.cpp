@@ -12,14 +12,6 @@ namespace rockcut::fluid::sp {
 
 namespace {
 
-void check_size(std::span<const double> a, std::size_t expected, const char* what) {
-  if (a.size() != expected) {
-    throw std::invalid_argument(std::string("fluid points: ") + what + " has " +
-                                std::to_string(a.size()) + " values, expected " +
-                                std::to_string(expected));
-  }
-}
-
 SpParams with_smoothing_length(SpParams params, double h_m) {
   params.h_m = h_m;
   return params;

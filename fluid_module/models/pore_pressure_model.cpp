@@ -14,16 +14,12 @@
 
 namespace rockcut::fluid::sp {
 
-namespace {
-
 void check_size(std::span<const double> a, std::size_t expected, const char* what) {
   if (a.size() != expected) {
     throw std::invalid_argument(std::string("fluid: ") + what + " has " + std::to_string(a.size()) +
                                 " values, expected " + std::to_string(expected));
   }
 }
-
-}  // namespace
 
 PorePressureModel::PorePressureModel(const SpParams& params)
     : params_(params), kernel_(params.h_m), diffusivity_m2_s_(params.diffusivity_m2_s()),

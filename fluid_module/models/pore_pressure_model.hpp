@@ -73,6 +73,9 @@ inline constexpr double kLocalMoveFraction = 0.5;
 /// which sweeps the rows in order without the rings' bookkeeping.
 inline constexpr double kLocalMaxFraction = 0.5;
 
+/// Throws std::invalid_argument naming `what` unless `a` holds `expected` values.
+void check_size(std::span<const double> a, std::size_t expected, const char* what);
+
 /// The mean of p - p_hydro [Pa] over the particles whose centre lies in `box`, and their count
 /// (FluidModel::probe).
 void mean_excess_in_box(std::span<const double> position, std::span<const double> pressure,

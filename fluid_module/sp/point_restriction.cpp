@@ -37,12 +37,12 @@ PointRestriction::PointRestriction(std::span<const double> position,
   if (!std::isfinite(x0 + x1 + y0 + y1)) {
     throw std::invalid_argument("fluid points: an initial position is not finite");
   }
-  grain_spacing_m_ = std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(n));
-  if (!(grain_spacing_m_ > 0.0)) {
+  // The grains' mean spacing, sqrt(area / grains) over their bounding box.
+  const double grain_spacing_m = std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(n));
+  if (!(grain_spacing_m > 0.0)) {
     throw std::invalid_argument("fluid.point_spacing needs grains spread over an area");
   }
-  const double spacing_m = spacing_grains * grain_spacing_m_;
-  spacing_m_ = spacing_m;
+  const double spacing_m = spacing_grains * grain_spacing_m;
   // The clusters: each grain joins the nearest node of a lattice whose spacing is the nearest to
   // spacing_m that puts nodes on all four sides; the nodes without grains hold no point.
   const auto intervals = [&](double length) {
@@ -53,22 +53,19 @@ PointRestriction::PointRestriction(std::span<const double> position,
   const double dy = ny ? (y1 - y0) / static_cast<double>(ny) : 1.0;
   node_spacing_m_[0] = dx;
   node_spacing_m_[1] = dy;
-  std::vector<long> node(n);
   std::vector<int> point_of_node(static_cast<std::size_t>((nx + 1) * (ny + 1)), -1);
+  point_of_.resize(n);  // first each grain's node, then that node's point
   for (std::size_t i = 0; i < n; ++i) {
     const long ix = std::clamp(std::lround((position[2 * i] - x0) / dx), 0L, nx);
     const long iy = std::clamp(std::lround((position[2 * i + 1] - y0) / dy), 0L, ny);
-    node[i] = iy * (nx + 1) + ix;
-    point_of_node[static_cast<std::size_t>(node[i])] = 0;
+    point_of_[i] = static_cast<int>(iy * (nx + 1) + ix);
+    point_of_node[static_cast<std::size_t>(point_of_[i])] = 0;
   }
   std::size_t m = 0;  // the points in the nodes' order, row by row
   for (int& p : point_of_node) {
     if (p == 0) p = static_cast<int>(m++);
   }
-  point_of_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    point_of_[i] = point_of_node[static_cast<std::size_t>(node[i])];
-  }
+  for (int& p : point_of_) p = point_of_node[static_cast<std::size_t>(p)];
 
   // The clusters in grain order and their weights a_j / A_p.
   cluster_start_.assign(m + 1, 0);

@@ -37,15 +37,10 @@ class PointRestriction {
 
   std::size_t points() const { return area_m2_.size(); }
   std::size_t grains() const { return point_of_.size(); }
-  /// The grains' mean spacing sqrt(area / grains) and the points' asked for [m].
-  double grain_spacing_m() const { return grain_spacing_m_; }
-  double spacing_m() const { return spacing_m_; }
   /// The lattice's spacing in x and y [m].
   const double* node_spacing_m() const { return node_spacing_m_; }
   /// The point whose cluster grain j belongs to.
   const std::vector<int>& point_of() const { return point_of_; }
-  /// R_pj of grain j in its point's cluster.
-  const std::vector<double>& weight() const { return weight_; }
   /// A_p, the area of point p's cluster [m^2].
   const std::vector<double>& area_m2() const { return area_m2_; }
 
@@ -59,10 +54,9 @@ class PointRestriction {
   void show_on_grains(std::span<const double> point, std::span<double> grain) const;
 
  private:
-  double grain_spacing_m_ = 0.0, spacing_m_ = 0.0;
   double node_spacing_m_[2] = {0.0, 0.0};
   std::vector<int> point_of_;
-  std::vector<double> weight_, area_m2_;
+  std::vector<double> weight_, area_m2_;  // R_pj of each grain in its cluster; A_p
   std::vector<std::size_t> cluster_start_;  // point p: grains cluster_[cluster_start_[p] ..]
   std::vector<int> cluster_;
 };

@@ -30,6 +30,11 @@ is about +-2.85 s around the centre: an equivalent run falls outside it with pro
 run with probability about 8 % per key: half of all exact-arithmetic changes tripped a case.)
 The floor of 1 % of the reference (and 1 for counts) keeps a key that happened not to vary in
 the measured runs from failing on round-off.
+
+The cases run over the inproc transport: every transport gives the same bits (the tests
+CoupledRun.TransportsGiveBitIdenticalResults and SharedMemory.PaperScaleCut...), and on these
+scenes inproc takes about two thirds of the wall of ipc, whose every message wakes a ZeroMQ I/O
+thread on each side (docs/performance.md, "Transports").
 """
 import argparse
 import concurrent.futures
@@ -42,6 +47,7 @@ from . import runs
 from .run_data import read_summary
 
 CASES = os.path.join(runs.REPO, "tests", "regression")
+TRANSPORT = "inproc"  # the same bits as ipc, quicker on reduced scenes (above)
 
 
 def case_path(name):
@@ -67,10 +73,11 @@ def run_case(case, coupler, extra_sets=()):
     """Runs the case's scene with its overrides; returns the summary as a dict."""
     with tempfile.TemporaryDirectory(prefix="rockcut-regression-") as out:
         sets = list(case.get("set", [])) + list(extra_sets)
-        proc = runs.run(os.path.join(runs.REPO, case["scene"]), out, sets, coupler)
+        proc = runs.run(os.path.join(runs.REPO, case["scene"]), out, sets, coupler, TRANSPORT)
         if proc.returncode != 0:
             raise RuntimeError("%s exited with %d:\n%s" % (
-                " ".join(runs.command(case["scene"], out, sets, coupler)), proc.returncode,
+                " ".join(runs.command(case["scene"], out, sets, coupler, TRANSPORT)),
+                proc.returncode,
                 proc.stderr[-2000:]))
         return read_summary(out)
 

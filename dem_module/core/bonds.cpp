@@ -48,7 +48,15 @@ BondSet BondSet::install(const Particles& p, const BondLaw& law, double gap_tole
     b.damaged_.assign(b.i_.size(), 0);
   }
   b.refresh_partners(p.size());
+  b.refresh_pair_masses(p);
   return b;
+}
+
+void BondSet::refresh_pair_masses(const Particles& p) {
+  sqrt_mass_.resize(i_.size());
+  for (std::size_t k = 0; k < i_.size(); ++k) {
+    sqrt_mass_[k] = sqrt_effective_mass(p.inv_mass[i_[k]], p.inv_mass[j_[k]]);
+  }
 }
 
 template <bool kDashpots, bool kSoftening>
@@ -59,7 +67,7 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
   const double* v = p.velocity.data();
   const double* w = p.angular_velocity.data();
   const double* r = p.radius.data();
-  const double* inv_m = p.inv_mass.data();
+  const double* sqrt_m = sqrt_mass_.data();
   const std::uint32_t* bi = i_.data();
   const std::uint32_t* bj = j_.data();
   const double* rest = rest_length_.data();
@@ -111,8 +119,8 @@ void BondSet::compute_impl(const Particles& p, double dt, std::size_t begin, std
     shear[k] = fs;
     if constexpr (kDashpots) {
       const double vn = (v[2 * j] - v[2 * i]) * nx + (v[2 * j + 1] - v[2 * i + 1]) * ny;
-      const PairDashpots d = pair_dashpots(cn_scale, ct_scale, sqrt_effective_mass(inv_m[i], inv_m[j]),
-                                           vn, vt, dt, dashpot[k], dissipated);
+      const PairDashpots d =
+          pair_dashpots(cn_scale, ct_scale, sqrt_m[k], vn, vt, dt, dashpot[k], dissipated);
       const double fn_total = fn + d.normal, fs_total = fs + d.tangential;
       const PairForce f = pair_force(fn_total, fs_total, nx, ny, tx, ty);  // on j
       out.add_pair(i, j, f.fx, f.fy, -fs_total * r[i], -fs_total * r[j]);
@@ -248,9 +256,8 @@ bool BondSet::soften(std::size_t k, const Particles& p, double dt, double fn, do
   softening_j += shear_loss + 0.5 * (t_before + t_after) * (open - open_before) - (e_after - e_before);
   double fn_total = -t_after, fs_total = fs_after;
   if constexpr (kDashpots) {
-    const PairDashpots d = pair_dashpots(cn_scale, ct_scale,
-                                         sqrt_effective_mass(p.inv_mass[i], p.inv_mass[j]), vn, vt,
-                                         dt, dashpot_[k], dissipated_j);
+    const PairDashpots d =
+        pair_dashpots(cn_scale, ct_scale, sqrt_mass_[k], vn, vt, dt, dashpot_[k], dissipated_j);
     fn_total += d.normal;
     fs_total += d.tangential;
   }
@@ -300,6 +307,7 @@ void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondB
     rest_length_[keep] = rest_length_[k];
     shear_force_[keep] = shear_force_[k];
     dashpot_[keep] = dashpot_[k];
+    sqrt_mass_[keep] = sqrt_mass_[k];
     if (!damage_.empty()) {
       damage_[keep] = damage_[k];
       damaged_[keep] = damaged_[k];
@@ -313,6 +321,7 @@ void BondSet::remove_broken(const Particles& p, double time_s, std::vector<BondB
   shear_force_.resize(keep);
   released_at_break_.resize(keep);
   dashpot_.resize(keep);
+  sqrt_mass_.resize(keep);
   broken_.resize(keep);
   if (!damage_.empty()) {
     damage_.resize(keep);

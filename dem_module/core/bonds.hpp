@@ -52,6 +52,9 @@ class BondSet {
   /// True if i and j are bonded; needs partners() to be current (refresh_partners()).
   bool bonded(std::uint32_t i, std::uint32_t j) const;
   void refresh_partners(std::size_t n);
+  /// sqrt(m_eff) of every bond's pair, which its dashpots scale with: computed once from the
+  /// masses (which never change) instead of at every step. After install() and load_state().
+  void refresh_pair_masses(const Particles& p);
   /// Checkpoint (core/dem_state.cpp): the bonds, their springs, dashpots' last forces and broken
   /// flags.
   void save_state(state::StateArchive& a) const;
@@ -107,6 +110,7 @@ class BondSet {
   std::vector<double> released_at_break_;  ///< energy a bond released as it broke [J/m]
   /// The dashpots' forces of the last evaluation (the F^n end of their trapezoid; 0 without).
   std::vector<PairDashpots> dashpot_;
+  std::vector<double> sqrt_mass_;     ///< sqrt_effective_mass of the pair [sqrt(kg/m)]
   std::vector<std::uint8_t> broken_;  ///< 0, or 1 + BreakMode
   /// D of a softening bond (core/bond_softening.hpp); empty under the brittle law.
   std::vector<double> damage_;

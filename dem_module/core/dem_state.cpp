@@ -217,6 +217,7 @@ void DemSystem::assign_state(const StateArchive& a) {
                      " values for " + std::to_string(n) + " particles");
   }
   bonds_.load_state(a, n);
+  bonds_.refresh_pair_masses(p);
   contacts_.load_state(a, n);
   walls_.load_state(a, n);
   const auto reactions = a.values("clamped_reaction_y_n_per_m", clamped_.size());

@@ -52,13 +52,10 @@ class BondSet {
   /// True if i and j are bonded; needs partners() to be current (refresh_partners()).
   bool bonded(std::uint32_t i, std::uint32_t j) const;
   void refresh_partners(std::size_t n);
-  /// sqrt(m_eff) of every bond's pair, which its dashpots scale with: computed once from the
-  /// masses (which never change) instead of at every step. After install() and load_state().
-  void refresh_pair_masses(const Particles& p);
   /// Checkpoint (core/dem_state.cpp): the bonds, their springs, dashpots' last forces and broken
-  /// flags.
+  /// flags; loaded onto the particles `p` (their count and masses).
   void save_state(state::StateArchive& a) const;
-  void load_state(const state::StateArchive& a, std::size_t particles);
+  void load_state(const state::StateArchive& a, const Particles& p);
 
   // Test access.
   /// Normal force of bond k at the current positions (compression positive) [N/m].
@@ -81,6 +78,9 @@ class BondSet {
   PairGeometry geometry_again(std::size_t k, const Particles& p, double dt) const;
   /// The length of bond k's pair at the current positions [m].
   double length_m(std::size_t k, const Particles& p) const;
+  /// sqrt(m_eff) of every bond's pair, which its dashpots scale with: computed once from the
+  /// masses (which never change) instead of at every step, by install() and load_state().
+  void refresh_pair_masses(const Particles& p);
 
   template <bool kDashpots, bool kSoftening>
   void compute_impl(const Particles& p, double dt, std::size_t begin, std::size_t end,

@@ -58,7 +58,8 @@ void BondSet::save_state(StateArchive& a) const {
   if (!damage_.empty()) a.put("bond_damage", damage_);
 }
 
-void BondSet::load_state(const StateArchive& a, std::size_t particles) {
+void BondSet::load_state(const StateArchive& a, const Particles& p) {
+  const std::size_t particles = p.size();
   a.get_values("bond_i", i_);
   const std::size_t n = i_.size();
   a.get_values("bond_j", j_, n);
@@ -82,6 +83,7 @@ void BondSet::load_state(const StateArchive& a, std::size_t particles) {
   check_index("bond_i", i_, particles);
   check_index("bond_j", j_, particles);
   refresh_partners(particles);
+  refresh_pair_masses(p);
 }
 
 void ContactList::save_state(StateArchive& a) const {
@@ -216,8 +218,7 @@ void DemSystem::assign_state(const StateArchive& a) {
     throw StateError("state member \"damping_force\" has " + std::to_string(damping_force_.size()) +
                      " values for " + std::to_string(n) + " particles");
   }
-  bonds_.load_state(a, n);
-  bonds_.refresh_pair_masses(p);
+  bonds_.load_state(a, p);
   contacts_.load_state(a, n);
   walls_.load_state(a, n);
   const auto reactions = a.values("clamped_reaction_y_n_per_m", clamped_.size());

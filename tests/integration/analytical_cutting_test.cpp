@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "integration/process_helpers.hpp"
+#include "integration/small_cuts.hpp"
 #include "integration/summary_values.hpp"
 #include "support/summary_parser.hpp"
 
@@ -16,18 +17,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kScene = source("cases/cutting/dry_reduced.pbtxt");
 
 // cutting_test.cpp's small cut (about 150 discs, 7 mm of travel): under a second with one thread.
-const std::vector<std::string> kSmallCut = {
-    "--set", "dem.specimen.radius_min_m=0.0016", "--set", "dem.specimen.radius_max_m=0.0032",
-    "--set", "time.end_time_s=0.008",            "--set", "dem.tool.steady_after_m=0.004",
-    "--set", "output.frame_interval_s=0.002"};
 
 double rad(double deg) { return deg * 3.14159265358979323846 / 180.0; }
 
 TEST(AnalyticalCutting, ACutWithARockCarriesEachModelAndTheRatios) {
-  const CouplerRun r = run_coupler(kScene, kSmallCut, fresh_dir("analytical_cut"),
+  const CouplerRun r = run_coupler(kDryReducedScene, kSmallDryCut, fresh_dir("analytical_cut"),
                                    std::chrono::milliseconds(60000));
   ASSERT_EQ(r.code, 0) << r.err;
   const coupler::Summary s = coupler::read_summary(r.out / "summary.json");
@@ -71,7 +67,7 @@ TEST(AnalyticalCutting, ACutWithoutARockHasNoAnalyticalKeys) {
   // The effective scene (bases merged) without its rock block, as a self-contained file.
   const fs::path dir = fresh_dir("analytical_no_rock");
   std::string text_out;
-  ASSERT_EQ(run({bin("coupler"), "validate", kScene, "--print"}, dir, "validate", &text_out), 0);
+  ASSERT_EQ(run({bin("coupler"), "validate", kDryReducedScene, "--print"}, dir, "validate", &text_out), 0);
   // The first line is validate's verdict ("...: ok (dry, ...)"), the scene follows.
   text_out.erase(0, text_out.find('\n') + 1);
   const auto begin = text_out.find("rock {");
@@ -82,7 +78,7 @@ TEST(AnalyticalCutting, ACutWithoutARockHasNoAnalyticalKeys) {
   ASSERT_EQ(text_out.find("rock {"), std::string::npos);
   const fs::path scene = dir / "no_rock.pbtxt";
   std::ofstream(scene) << text_out;
-  const CouplerRun r = run_coupler(scene.string(), kSmallCut, dir, std::chrono::milliseconds(60000));
+  const CouplerRun r = run_coupler(scene.string(), kSmallDryCut, dir, std::chrono::milliseconds(60000));
   ASSERT_EQ(r.code, 0) << r.err;
   const coupler::Summary s = coupler::read_summary(r.out / "summary.json");
   EXPECT_GT(number(s, "force_horizontal_mean_n_per_m"), 0.0);

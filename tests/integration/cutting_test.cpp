@@ -11,6 +11,7 @@
 
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
+#include "integration/small_cuts.hpp"
 #include "integration/summary_values.hpp"
 #include "output/summary_json.hpp"
 #include "support/summary_parser.hpp"
@@ -21,17 +22,12 @@ namespace {
 namespace fs = std::filesystem;
 using coupler::Summary;
 
-const std::string kScene = source("cases/cutting/dry_reduced.pbtxt");
 
 // The small cut: discs twice as coarse as dry_reduced (radius 1.6-3.2 mm: about 150 discs, and
 // twice the time step), 7 mm of tool travel (t = 8 ms; the tip starts 1 mm before the block) and
 // the steady part from 4 mm. On this packing the first bonds break at about 3 mm of travel and
 // about 25 have broken by 6 mm, so the run has breaks and steady samples. About 60,000 steps:
 // under a second with one thread.
-const std::vector<std::string> kSmallCut = {
-    "--set", "dem.specimen.radius_min_m=0.0016", "--set", "dem.specimen.radius_max_m=0.0032",
-    "--set", "time.end_time_s=0.008",            "--set", "dem.tool.steady_after_m=0.004",
-    "--set", "output.frame_interval_s=0.002"};
 
 // Bad input exits 2 and starts no run, whoever finds it: the scene loader (schema ranges) before any
 // process starts, or the DEM when it answers Init with an error (a combination the schema cannot
@@ -40,9 +36,9 @@ constexpr int kExitBadInput = 2;
 
 // Runs the small cut with extra arguments into a fresh directory.
 CouplerRun run_small_cut(const std::string& name, const std::vector<std::string>& extra = {}) {
-  std::vector<std::string> args = kSmallCut;
+  std::vector<std::string> args = kSmallDryCut;
   args.insert(args.end(), extra.begin(), extra.end());
-  return run_coupler(kScene, args, fresh_dir(name), std::chrono::milliseconds(60000));
+  return run_coupler(kDryReducedScene, args, fresh_dir(name), std::chrono::milliseconds(60000));
 }
 
 // Every time series (step is uint64 and follows time_s), /breaks and the last frame's positions of
@@ -73,8 +69,8 @@ void expect_bit_identical_runs(const fs::path& a_dir, const fs::path& b_dir) {
 
 TEST(Cutting, SmallDryCutWritesForcesBreaksAndDamage) {
   const fs::path dir = fresh_dir("small_cut");
-  std::vector<std::string> argv = {bin("coupler"), "run", kScene, "--out", (dir / "out").string()};
-  argv.insert(argv.end(), kSmallCut.begin(), kSmallCut.end());
+  std::vector<std::string> argv = {bin("coupler"), "run", kDryReducedScene, "--out", (dir / "out").string()};
+  argv.insert(argv.end(), kSmallDryCut.begin(), kSmallDryCut.end());
   const Spawned s = spawn(argv, dir, "coupler");
   KillOnExit guard{s.pid};
   // Watch the coupler's children while it runs: a dry scene starts only a dem_module.
@@ -239,7 +235,7 @@ TEST(Cutting, BadDemParametersAreRefusedBeforeTheRun) {
   for (const BadParameter& c : cases) {
     const fs::path dir = fresh_dir("bad_" + c.field);
     std::string out, err;
-    const int code = run({bin("coupler"), "run", kScene, "--out", (dir / "out").string(), "--set",
+    const int code = run({bin("coupler"), "run", kDryReducedScene, "--out", (dir / "out").string(), "--set",
                           c.set},
                          dir, "coupler", &out, &err, std::chrono::milliseconds(30000));
     EXPECT_EQ(code, kExitBadInput) << c.set << "\n" << err;

@@ -14,7 +14,7 @@
 namespace rockcut::test {
 namespace {
 
-const std::string kScene = source("cases/verification/bond_bundle_fracture.pbtxt");
+const std::string kBundleScene = source("cases/verification/bond_bundle_fracture.pbtxt");
 // The scene's lattice and bonds.
 constexpr double kColumns = 20, kBondsInSeries = 5, kSpacingM = 0.0010000005;
 constexpr double kStrengthNPerM = 6.65e3, kStiffnessPa = 7.25e9;
@@ -25,7 +25,7 @@ double bond_work_j(double lambda) {
 
 coupler::Summary pull_apart(const std::string& name, double lambda) {
   const CouplerRun r =
-      run_coupler(kScene, {"--set", "dem.bonds.softening_ratio=" + std::to_string(lambda)},
+      run_coupler(kBundleScene, {"--set", "dem.bonds.softening_ratio=" + std::to_string(lambda)},
                   fresh_dir(name), std::chrono::milliseconds(60000));
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out_text.find("came apart"), std::string::npos) << r.out_text;

@@ -11,6 +11,7 @@
 
 #include "integration/h5_read.hpp"
 #include "integration/process_helpers.hpp"
+#include "integration/small_cuts.hpp"
 
 namespace rockcut::test {
 namespace {
@@ -18,19 +19,18 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-const std::string kScene = source("cases/cutting/dry_reduced.pbtxt");
 const std::vector<std::string> kShort = {"--set", "time.end_time_s=0.002"};
 
 TEST(OutDir, ASecondRunIntoTheSameDirectoryIsRefusedNamingTheFirst) {
   const fs::path dir = fresh_dir("out_dir_lock");
   const fs::path out = dir / "out";
-  std::vector<std::string> first = {bin("coupler"), "run", kScene, "--out", out.string(),
+  std::vector<std::string> first = {bin("coupler"), "run", kDryReducedScene, "--out", out.string(),
                                     "--set", "time.end_time_s=0.01"};
   const Spawned a = spawn(first, dir, "first");
   KillOnExit guard{a.pid};
   while (!fs::exists(out / "run.h5")) ASSERT_FALSE(wait_exit(a.pid, 5ms).has_value());
   std::string err;
-  std::vector<std::string> second = {bin("coupler"), "run", kScene, "--out", out.string()};
+  std::vector<std::string> second = {bin("coupler"), "run", kDryReducedScene, "--out", out.string()};
   second.insert(second.end(), kShort.begin(), kShort.end());
   EXPECT_EQ(run(second, dir, "second", nullptr, &err), 2);
   EXPECT_NE(err.find("is in use by another run (coupler pid " + std::to_string(a.pid) + ")"),
@@ -50,11 +50,11 @@ TEST(OutDir, ASecondRunIntoTheSameDirectoryIsRefusedNamingTheFirst) {
 
 TEST(OutDir, AFreshRunDropsTheSummaryAndCheckpointsOfAnEarlierOne) {
   const fs::path dir = fresh_dir("out_dir_fresh");
-  const CouplerRun earlier = run_coupler(kScene, kShort, dir, 120000ms);
+  const CouplerRun earlier = run_coupler(kDryReducedScene, kShort, dir, 120000ms);
   ASSERT_EQ(earlier.code, 0) << earlier.err;
   ASSERT_TRUE(fs::exists(earlier.out / "summary.json"));
   ASSERT_TRUE(fs::exists(earlier.out / "checkpoints"));
-  std::vector<std::string> argv = {bin("coupler"), "run", kScene, "--out", earlier.out.string(),
+  std::vector<std::string> argv = {bin("coupler"), "run", kDryReducedScene, "--out", earlier.out.string(),
                                    "--overwrite", "--set", "time.end_time_s=0.05"};
   const Spawned s = spawn(argv, dir, "fresh");
   KillOnExit guard{s.pid};
@@ -77,7 +77,7 @@ TEST(OutDir, ALinkWhereRunH5GoesIsNotFollowed) {
   fs::create_symlink(victim, out / "run.h5");
   std::vector<std::string> args = kShort;
   args.push_back("--overwrite");  // something is where run.h5 goes
-  const CouplerRun r = run_coupler(kScene, args, dir, 120000ms);
+  const CouplerRun r = run_coupler(kDryReducedScene, args, dir, 120000ms);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_file(victim), "keep me\n");
   EXPECT_FALSE(fs::is_symlink(out / "run.h5"));
@@ -129,7 +129,7 @@ TEST(OutDir, AFileSizeLimitStopsTheRunWithExitCode5AndASummary) {
   const fs::path out = dir / "out";
   std::string err;
   const int code = run({"/bin/sh", "-c",
-                        "ulimit -f 300; exec " + bin("coupler") + " run " + kScene + " --out " +
+                        "ulimit -f 300; exec " + bin("coupler") + " run " + kDryReducedScene + " --out " +
                             out.string() + " --set time.end_time_s=0.01"},
                        dir, "full", nullptr, &err);
   EXPECT_EQ(code, 5) << err;
@@ -144,7 +144,7 @@ TEST(OutDir, AFileSizeLimitStopsTheRunWithExitCode5AndASummary) {
 // it runs, and summary.json stays JSON (the bad byte becomes U+FFFD).
 TEST(OutDir, ABareSceneNameAndALatin1TitleRun) {
   const fs::path dir = fresh_dir("out_dir_bare");
-  std::ofstream(dir / "s.pbtxt") << "base: \"" << kScene << "\"\ntitle: \"caf\xe9\"\n";
+  std::ofstream(dir / "s.pbtxt") << "base: \"" << kDryReducedScene << "\"\ntitle: \"caf\xe9\"\n";
   std::string err;
   const int code = run({"/bin/sh", "-c",
                         "cd " + dir.string() + " && exec " + bin("coupler") +
@@ -179,7 +179,7 @@ TEST(OutDir, TheSocketDirectoryOfAKilledCouplerIsRemovedByTheNextRun) {
   ASSERT_NE(mkdtemp(templ.data()), nullptr);
   const fs::path tmp = templ;
   ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
-  std::vector<std::string> argv = {bin("coupler"), "run", kScene, "--out", (dir / "killed").string(),
+  std::vector<std::string> argv = {bin("coupler"), "run", kDryReducedScene, "--out", (dir / "killed").string(),
                                    "--set", "time.end_time_s=0.05"};
   const Spawned s = spawn(argv, dir, "killed");
   {
@@ -189,7 +189,7 @@ TEST(OutDir, TheSocketDirectoryOfAKilledCouplerIsRemovedByTheNextRun) {
     wait_exit(s.pid, 30s);
   }
   EXPECT_FALSE(fs::is_empty(tmp)) << "the killed coupler's directory";
-  const CouplerRun next = run_coupler(kScene, kShort, dir, 120000ms);
+  const CouplerRun next = run_coupler(kDryReducedScene, kShort, dir, 120000ms);
   unsetenv("TMPDIR");
   EXPECT_EQ(next.code, 0) << next.err;
   EXPECT_TRUE(fs::is_empty(tmp));

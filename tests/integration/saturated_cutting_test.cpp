@@ -39,14 +39,14 @@ fs::path small_scene(const fs::path& dir) {
 // Twice as coarse as saturated_reduced (radius 1.6-3.2 mm, about 150 discs, h 12 mm: the same
 // h / diameter), 7 mm of travel with the steady part from 4 mm, and node boxes of 10 mm so each
 // holds a few disc centres. Under two seconds with one thread.
-const std::vector<std::string> kSmallCut = {
+const std::vector<std::string> kSmallSaturatedCut = {
     "--set", "dem.specimen.radius_min_m=0.0016", "--set", "dem.specimen.radius_max_m=0.0032",
     "--set", "fluid.smoothing_length_m=0.012",   "--set", "time.end_time_s=0.008",
     "--set", "dem.tool.steady_after_m=0.004",    "--set", "output.frame_interval_s=0.004"};
 
 CouplerRun run_small_cut(const std::string& name, const std::vector<std::string>& extra = {}) {
   const fs::path dir = fresh_dir(name);
-  std::vector<std::string> args = kSmallCut;
+  std::vector<std::string> args = kSmallSaturatedCut;
   args.insert(args.end(), extra.begin(), extra.end());
   return run_coupler(small_scene(dir).string(), args, dir, std::chrono::milliseconds(90000));
 }

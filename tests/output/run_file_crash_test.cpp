@@ -28,12 +28,12 @@ double read_double_attribute(hid_t loc, const std::string& name);
 
 namespace {
 
-constexpr std::size_t kN = 4;
+constexpr std::size_t kCrashParticles = 4;
 constexpr int kFrames = 3;
 constexpr int kRowsPerFrame = 5;
 
 std::vector<double> frame_positions(int frame) {
-  std::vector<double> xy(2 * kN);
+  std::vector<double> xy(2 * kCrashParticles);
   for (std::size_t i = 0; i < xy.size(); ++i) xy[i] = frame * 100.0 + static_cast<double>(i);
   return xy;
 }
@@ -51,7 +51,7 @@ double row_value(int row) { return 0.5 * row; }
                               {{"force", row_value(row)}});
       }
       const std::vector<double> xy = frame_positions(f);
-      run.write_frame(f * 0.1, static_cast<std::uint64_t>(row), kN, {{"position", 2, xy}});
+      run.write_frame(f * 0.1, static_cast<std::uint64_t>(row), kCrashParticles, {{"position", 2, xy}});
     }
     run.append_timeseries(1.0, 999, {{"force", -1.0}});  // after the last flush
     raise(SIGKILL);  // the crash: `run` is never closed or destroyed

@@ -18,11 +18,11 @@ std::uint64_t read_u64_attribute(hid_t loc, const std::string& name);
 
 namespace {
 
-constexpr std::size_t kN = 5;
+constexpr std::size_t kFrameParticles = 5;
 
 std::vector<double> positions(int frame) {
   std::vector<double> xy;
-  for (std::size_t i = 0; i < kN; ++i) {
+  for (std::size_t i = 0; i < kFrameParticles; ++i) {
     xy.push_back(0.1 * static_cast<double>(i) + frame);     // x
     xy.push_back(-0.01 * static_cast<double>(i) - frame);   // y
   }
@@ -31,7 +31,7 @@ std::vector<double> positions(int frame) {
 
 std::vector<double> radii(int frame) {
   std::vector<double> r;
-  for (std::size_t i = 0; i < kN; ++i) r.push_back(1e-3 * static_cast<double>(i + 1) / (frame + 1));
+  for (std::size_t i = 0; i < kFrameParticles; ++i) r.push_back(1e-3 * static_cast<double>(i + 1) / (frame + 1));
   return r;
 }
 
@@ -69,7 +69,7 @@ TEST(RunFileFrames, ThreeFramesReadBackExactly) {
     for (int f = 0; f < 3; ++f) {
       const std::vector<double> xy = positions(f);
       const std::vector<double> r = radii(f);
-      run.write_frame(times[f], steps[f], kN, {{"position", 2, xy}, {"radius", 1, r}});
+      run.write_frame(times[f], steps[f], kFrameParticles, {{"position", 2, xy}, {"radius", 1, r}});
       EXPECT_EQ(run.frame_count(), static_cast<std::size_t>(f + 1));
     }
     run.close();
@@ -81,13 +81,13 @@ TEST(RunFileFrames, ThreeFramesReadBackExactly) {
     SCOPED_TRACE(group);
     EXPECT_EQ(read_doubles(file.get(), group + "/position"), positions(f));
     EXPECT_EQ(read_doubles(file.get(), group + "/radius"), radii(f));
-    EXPECT_EQ(dataset_dims(file.get(), group + "/position"), (std::vector<hsize_t>{kN, 2}));
-    EXPECT_EQ(dataset_dims(file.get(), group + "/radius"), (std::vector<hsize_t>{kN}));
+    EXPECT_EQ(dataset_dims(file.get(), group + "/position"), (std::vector<hsize_t>{kFrameParticles, 2}));
+    EXPECT_EQ(dataset_dims(file.get(), group + "/radius"), (std::vector<hsize_t>{kFrameParticles}));
     h5::Handle g = h5::group(H5Gopen2(file.get(), group.c_str(), H5P_DEFAULT), group, "open");
     EXPECT_EQ(read_double_attribute(g.get(), "time_s"), times[f]);
     EXPECT_EQ(read_u64_attribute(g.get(), "step"), steps[f]);
-    expect_chunked_deflate(file.get(), group + "/position", {kN, 2});
-    expect_chunked_deflate(file.get(), group + "/radius", {kN});
+    expect_chunked_deflate(file.get(), group + "/position", {kFrameParticles, 2});
+    expect_chunked_deflate(file.get(), group + "/radius", {kFrameParticles});
   }
   EXPECT_EQ(H5Lexists(file.get(), "/frames/000003", H5P_DEFAULT), 0);
 }
@@ -143,22 +143,22 @@ TEST(RunFileFrames, MalformedFramesAreRejectedAndLeaveNoGroup) {
   const std::vector<double> r = radii(0);
   {
     RunFile run(dir, "scene", {});
-    EXPECT_THROW(run.write_frame(0, 0, kN, {{"radius", 1, r}}), std::invalid_argument);
-    EXPECT_THROW(run.write_frame(0, 0, kN, {{"position", 1, r}}), std::invalid_argument);
-    EXPECT_THROW(run.write_frame(0, 0, kN, {{"position", 2, xy}, {"radius", 1, xy}}),
+    EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"radius", 1, r}}), std::invalid_argument);
+    EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 1, r}}), std::invalid_argument);
+    EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 2, xy}, {"radius", 1, xy}}),
                  std::invalid_argument);
-    EXPECT_THROW(run.write_frame(0, 0, kN, {{"position", 2, xy}, {"stress", 3, {}}}),
+    EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 2, xy}, {"stress", 3, {}}}),
                  std::invalid_argument);
-    EXPECT_THROW(run.write_frame(0, 0, kN, {{"position", 2, xy}, {"a/b", 1, r}}),
+    EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 2, xy}, {"a/b", 1, r}}),
                  std::invalid_argument);
-    EXPECT_THROW(run.write_frame(0, 0, kN, {{"position", 2, xy}, {"position", 2, xy}}),
+    EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 2, xy}, {"position", 2, xy}}),
                  std::invalid_argument);
-    EXPECT_THROW(run.write_frame(NAN, 0, kN, {{"position", 2, xy}}), std::invalid_argument);
+    EXPECT_THROW(run.write_frame(NAN, 0, kFrameParticles, {{"position", 2, xy}}), std::invalid_argument);
     EXPECT_EQ(run.frame_count(), 0u);
-    run.write_frame(1.0, 1, kN, {{"position", 2, xy}});
+    run.write_frame(1.0, 1, kFrameParticles, {{"position", 2, xy}});
     EXPECT_EQ(run.frame_count(), 1u);
     run.close();
-    EXPECT_THROW(run.write_frame(2.0, 2, kN, {{"position", 2, xy}}), std::logic_error);
+    EXPECT_THROW(run.write_frame(2.0, 2, kFrameParticles, {{"position", 2, xy}}), std::logic_error);
   }
   h5::Handle file = open_read_only(dir / "run.h5");
   EXPECT_EQ(read_doubles(file.get(), "/frames/000000/position"), xy);

@@ -4,23 +4,15 @@
 #include <numeric>
 
 #include "wire/message.hpp"
+#include "wire/socket_pair.hpp"
 
 namespace rockcut::wire {
 namespace {
 
-// A connected socket pair inside one context: what the coupler and a module see.
-struct Pair {
-  zmq::context_t context{1};
-  zmq::socket_t a{context, zmq::socket_type::pair};
-  zmq::socket_t b{context, zmq::socket_type::pair};
-  Pair() {
-    a.bind("inproc://pair");
-    b.connect("inproc://pair");
-  }
-};
+using test_support::SocketPair;
 
 TEST(Message, ArraysRoundTripBitForBit) {
-  Pair p;
+  SocketPair p;
   std::vector<double> position(2000), radius(1000);
   std::iota(position.begin(), position.end(), 0.125);
   std::iota(radius.begin(), radius.end(), -3.5);
@@ -45,7 +37,7 @@ TEST(Message, ArraysRoundTripBitForBit) {
 
 TEST(Message, SmallArraysAreReadEvenWhenZeroMqStoresThemUnaligned) {
   // ZeroMQ keeps messages under 33 bytes inside the message object, possibly unaligned.
-  Pair p;
+  SocketPair p;
   const std::vector<double> tiny = {1.0, -2.0, 3.0};
   for (int k = 0; k < 4; ++k) {
     Message out;
@@ -60,7 +52,7 @@ TEST(Message, SmallArraysAreReadEvenWhenZeroMqStoresThemUnaligned) {
 }
 
 TEST(Message, TakeArraysForwardsWithoutTouchingTheData) {
-  Pair p;
+  SocketPair p;
   std::vector<double> force(10, 4.0);
   Message reply;
   reply.envelope.mutable_fluid_result();
@@ -89,7 +81,7 @@ TEST(Message, MismatchesAreProtocolErrors) {
 }
 
 TEST(Message, GarbageFrameIsRejected) {
-  Pair p;
+  SocketPair p;
   const std::string junk = "\xff\xff\xff not a protobuf";
   p.a.send(zmq::buffer(junk));
   Message in;
@@ -97,7 +89,7 @@ TEST(Message, GarbageFrameIsRejected) {
 }
 
 TEST(Message, MissingFramesAreRejected) {
-  Pair p;
+  SocketPair p;
   Envelope e;
   ArrayHeader* h = e.add_arrays();
   h->set_name("force");

@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "wire/message.hpp"
+#include "wire/socket_pair.hpp"
 #include "wire/shared_payload.hpp"
 
 namespace rockcut::wire {
@@ -16,15 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Pair {
-  zmq::context_t context{1};
-  zmq::socket_t a{context, zmq::socket_type::pair};
-  zmq::socket_t b{context, zmq::socket_type::pair};
-  explicit Pair(const std::string& name) {
-    a.bind("inproc://" + name);
-    b.connect("inproc://" + name);
-  }
-};
+using test_support::SocketPair;
 
 bool segment_exists(const std::string& name) { return fs::exists("/dev/shm" + name); }
 
@@ -42,7 +35,7 @@ const ArrayHeader& header_of(const Message& m, const std::string& name) {
 }
 
 TEST(SharedPayload, LargeArraysTravelInSharedMemorySmallOnesInFrames) {
-  Pair p("shm_large_small");
+  SocketPair p("shm_large_small");
   SharedPayloadArena arena;
   // 10,000 particles' positions (160 kB) and 100 radii (800 bytes): one on each side of kMinBytes.
   const std::vector<double> position = ramp(20000, 0.25), radius = ramp(100, -1.5);
@@ -86,7 +79,7 @@ TEST(SharedPayload, LargeArraysTravelInSharedMemorySmallOnesInFrames) {
 
 TEST(SharedPayload, ForwardedHeadersPointAtTheSenderSegmentWithoutACopy) {
   // The coupler forwards the DEM's positions to the fluid: the fluid reads the DEM's segment.
-  Pair dem_to_coupler("shm_fwd_1"), coupler_to_fluid("shm_fwd_2");
+  SocketPair dem_to_coupler("shm_fwd_1"), coupler_to_fluid("shm_fwd_2");
   SharedPayloadArena arena;
   const std::vector<double> position = ramp(30000, 3.0);
   Message from_dem;
@@ -113,7 +106,7 @@ TEST(SharedPayload, ForwardedHeadersPointAtTheSenderSegmentWithoutACopy) {
 }
 
 TEST(SharedPayload, ValuesWrittenAgainBeforeTheyAreReadAreRefused) {
-  Pair p("shm_overwrite");
+  SocketPair p("shm_overwrite");
   SharedPayloadArena arena;
   std::vector<Message> sent(3);
   for (int k = 0; k < 3; ++k) {
@@ -136,7 +129,7 @@ TEST(SharedPayload, ValuesWrittenAgainBeforeTheyAreReadAreRefused) {
 }
 
 TEST(SharedPayload, AnArrayThatOutgrowsItsSegmentMovesToANewOne) {
-  Pair p("shm_grow");
+  SocketPair p("shm_grow");
   SharedPayloadArena arena;
   Message m;
   m.use_arena(&arena);

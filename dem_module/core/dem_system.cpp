@@ -161,6 +161,7 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
   const double* fr = extrapolation_.rate.empty() ? nullptr : extrapolation_.rate.data();
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
   const bool body = has_body_forces_;
+  const bool weighed = has_gravity();
   double vmax2 = 0.0, work = 0.0, gravity = 0.0, damping = 0.0;
   // Verlet moves x by v^{n+1/2} dt under the mean of F^n and F^{n+1}: each force's work over the
   // drift is the trapezoid 1/2 (F^n + F^{n+1}) . dx. The F^n halves are added here, the F^{n+1}
@@ -177,7 +178,7 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
     vmax2 = std::max(vmax2, vx * vx + vy * vy);
     if (body) {
       work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * 0.5 * dt;
-      gravity += (gx * vx + gy * vy) / inv_m[i] * 0.5 * dt;
+      if (weighed) gravity += (gx * vx + gy * vy) / inv_m[i] * 0.5 * dt;
     }
     if (fr) {
       fe[2 * i] += fr[2 * i] * dt;
@@ -185,8 +186,8 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
     }
     if (fd) damping -= (fd[3 * i] * vx + fd[3 * i + 1] * vy + fd[3 * i + 2] * w[i]) * 0.5 * dt;
     if (reset_forces) {  // F^n has been used: start F^{n+1} from gravity in the same pass
-      f[2 * i] = gx / inv_m[i];
-      f[2 * i + 1] = gy / inv_m[i];
+      f[2 * i] = weighed ? gx / inv_m[i] : 0.0;
+      f[2 * i + 1] = weighed ? gy / inv_m[i] : 0.0;
       q[i] = 0.0;
     }
   }
@@ -201,9 +202,10 @@ void DemSystem::reset_forces_range(std::size_t begin, std::size_t end) {
   double* q = particles_.torque.data();
   const double* inv_m = particles_.inv_mass.data();
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
+  const bool weighed = has_gravity();
   for (std::size_t i = begin; i < end; ++i) {
-    f[2 * i] = gx / inv_m[i];
-    f[2 * i + 1] = gy / inv_m[i];
+    f[2 * i] = weighed ? gx / inv_m[i] : 0.0;
+    f[2 * i + 1] = weighed ? gy / inv_m[i] : 0.0;
     q[i] = 0.0;
   }
 }
@@ -251,13 +253,14 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
   double* fd = damping_force_.data();
   const double h = 0.5 * dt_last_;  // the F^{n+1} half of the trapezoid, see drift_range()
   const bool body = has_body_forces_;
+  const bool weighed = has_gravity();
   double damping = 0.0, work = 0.0, gravity = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
     double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
     const double vx = v[2 * i], vy = v[2 * i + 1];
     if (body) {
       work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * h;
-      gravity += (gx * vx + gy * vy) / inv_m[i] * h;
+      if (weighed) gravity += (gx * vx + gy * vy) / inv_m[i] * h;
     }
     if (alpha > 0) {
       // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.

@@ -26,8 +26,7 @@ std::pair<std::size_t, std::size_t> share(std::size_t count, int t, int threads)
 }
 }  // namespace
 
-DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet bonds,
-                     WallSet walls)
+DemSystem::DemSystem(Particles particles, const DemSettings& settings, BondSet bonds, WallSet walls)
     : particles_(std::move(particles)),
       settings_(settings),
       bonds_(std::move(bonds)),
@@ -238,8 +237,7 @@ void DemSystem::pair_forces(int t, int threads, double dt, ThreadSums& sums) {
   }
 }
 
-void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
-                             ThreadSums& sums) {
+void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt, ThreadSums& sums) {
   double* f = particles_.force.data();
   double* q = particles_.torque.data();
   const double* fe = particles_.external_force.data();
@@ -326,8 +324,7 @@ void DemSystem::compute_internal_forces() {
   internal_forces_current_ = true;
   const std::size_t n = particles_.size();
   phases_.start();
-  if (has_pairs_ && max_drift_m_ + walls_.displacement_since_rebuild() >
-                        0.5 * settings_.skin_m) {
+  if (has_pairs_ && max_drift_m_ + walls_.displacement_since_rebuild() > 0.5 * settings_.skin_m) {
     rebuild_neighbours();
     phases_.lap(kNeighbours);
   }

@@ -17,9 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
-// cutting_test.cpp's small cut (about 150 discs, 7 mm of travel): under a second with one thread.
-
 double rad(double deg) { return deg * 3.14159265358979323846 / 180.0; }
 
 TEST(AnalyticalCutting, ACutWithARockCarriesEachModelAndTheRatios) {
@@ -67,7 +64,9 @@ TEST(AnalyticalCutting, ACutWithoutARockHasNoAnalyticalKeys) {
   // The effective scene (bases merged) without its rock block, as a self-contained file.
   const fs::path dir = fresh_dir("analytical_no_rock");
   std::string text_out;
-  ASSERT_EQ(run({bin("coupler"), "validate", kDryReducedScene, "--print"}, dir, "validate", &text_out), 0);
+  ASSERT_EQ(
+      run({bin("coupler"), "validate", kDryReducedScene, "--print"}, dir, "validate", &text_out),
+      0);
   // The first line is validate's verdict ("...: ok (dry, ...)"), the scene follows.
   text_out.erase(0, text_out.find('\n') + 1);
   const auto begin = text_out.find("rock {");
@@ -78,7 +77,8 @@ TEST(AnalyticalCutting, ACutWithoutARockHasNoAnalyticalKeys) {
   ASSERT_EQ(text_out.find("rock {"), std::string::npos);
   const fs::path scene = dir / "no_rock.pbtxt";
   std::ofstream(scene) << text_out;
-  const CouplerRun r = run_coupler(scene.string(), kSmallDryCut, dir, std::chrono::milliseconds(60000));
+  const CouplerRun r =
+      run_coupler(scene.string(), kSmallDryCut, dir, std::chrono::milliseconds(60000));
   ASSERT_EQ(r.code, 0) << r.err;
   const coupler::Summary s = coupler::read_summary(r.out / "summary.json");
   EXPECT_GT(number(s, "force_horizontal_mean_n_per_m"), 0.0);

@@ -22,13 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using coupler::Summary;
 
-
-// The small cut: discs twice as coarse as dry_reduced (radius 1.6-3.2 mm: about 150 discs, and
-// twice the time step), 7 mm of tool travel (t = 8 ms; the tip starts 1 mm before the block) and
-// the steady part from 4 mm. On this packing the first bonds break at about 3 mm of travel and
-// about 25 have broken by 6 mm, so the run has breaks and steady samples. About 60,000 steps:
-// under a second with one thread.
-
 // Bad input exits 2 and starts no run, whoever finds it: the scene loader (schema ranges) before any
 // process starts, or the DEM when it answers Init with an error (a combination the schema cannot
 // check); the coupler then reports "refused by dem_module" (coupler/session/run_session.cpp).
@@ -69,7 +62,8 @@ void expect_bit_identical_runs(const fs::path& a_dir, const fs::path& b_dir) {
 
 TEST(Cutting, SmallDryCutWritesForcesBreaksAndDamage) {
   const fs::path dir = fresh_dir("small_cut");
-  std::vector<std::string> argv = {bin("coupler"), "run", kDryReducedScene, "--out", (dir / "out").string()};
+  std::vector<std::string> argv = {bin("coupler"), "run", kDryReducedScene, "--out",
+                                   (dir / "out").string()};
   argv.insert(argv.end(), kSmallDryCut.begin(), kSmallDryCut.end());
   const Spawned s = spawn(argv, dir, "coupler");
   KillOnExit guard{s.pid};
@@ -235,9 +229,9 @@ TEST(Cutting, BadDemParametersAreRefusedBeforeTheRun) {
   for (const BadParameter& c : cases) {
     const fs::path dir = fresh_dir("bad_" + c.field);
     std::string out, err;
-    const int code = run({bin("coupler"), "run", kDryReducedScene, "--out", (dir / "out").string(), "--set",
-                          c.set},
-                         dir, "coupler", &out, &err, std::chrono::milliseconds(30000));
+    const int code = run(
+        {bin("coupler"), "run", kDryReducedScene, "--out", (dir / "out").string(), "--set", c.set},
+        dir, "coupler", &out, &err, std::chrono::milliseconds(30000));
     EXPECT_EQ(code, kExitBadInput) << c.set << "\n" << err;
     EXPECT_NE(err.find(c.field), std::string::npos) << c.set << ": the message names no field\n"
                                                     << err;

@@ -24,9 +24,16 @@ const std::string kPressureGradientScene = source("cases/verification/pressure_g
 
 // A long run (1e7 steps) that writes a frame every 1000 steps, so frames exist when we strike.
 Spawned start_long_run(const fs::path& dir, std::vector<std::string> extra = {}) {
-  std::vector<std::string> argv = {bin("coupler"), "run", kPressureGradientScene, "--out", (dir / "out").string(),
-                                   "--set", "time.end_time_s=100", "--set",
-                                   "output.frame_interval_s=0.01", "--set",
+  std::vector<std::string> argv = {bin("coupler"),
+                                   "run",
+                                   kPressureGradientScene,
+                                   "--out",
+                                   (dir / "out").string(),
+                                   "--set",
+                                   "time.end_time_s=100",
+                                   "--set",
+                                   "output.frame_interval_s=0.01",
+                                   "--set",
                                    "verification.tolerance_rel=1"};
   argv.insert(argv.end(), extra.begin(), extra.end());
   return spawn(argv, dir, "coupler");
@@ -108,9 +115,10 @@ TEST(Faults, StalledModuleIsDetectedWithinTheTimeout) {
 TEST(Faults, VersionMismatchedModuleIsRefusedNamingBothSides) {
   const fs::path dir = fresh_dir("version");
   std::string out, err;
-  const int code = run({bin("coupler"), "run", kPressureGradientScene, "--out", (dir / "out").string(), "--set",
-                        "dem.executable=" + std::string(ROCKCUT_BIN_DIR) + "/../tests/fake_module"},
-                       dir, "coupler", &out, &err);
+  const int code =
+      run({bin("coupler"), "run", kPressureGradientScene, "--out", (dir / "out").string(), "--set",
+           "dem.executable=" + std::string(ROCKCUT_BIN_DIR) + "/../tests/fake_module"},
+          dir, "coupler", &out, &err);
   EXPECT_EQ(code, 3);
   EXPECT_NE(err.find("protocol version mismatch"), std::string::npos) << err;
   EXPECT_NE(err.find("speaks protocol " + std::to_string(rockcut::wire::kProtocolVersion)), std::string::npos) << err;
@@ -121,8 +129,8 @@ TEST(Faults, VersionMismatchedModuleIsRefusedNamingBothSides) {
 TEST(Faults, UnknownFluidModelIsRefusedListingTheOffer) {
   const fs::path dir = fresh_dir("model");
   std::string out, err;
-  const int code = run({bin("coupler"), "run", kPressureGradientScene, "--out", (dir / "out").string(), "--set",
-                        "fluid.model=lattice_boltzmann"},
+  const int code = run({bin("coupler"), "run", kPressureGradientScene, "--out",
+                        (dir / "out").string(), "--set", "fluid.model=lattice_boltzmann"},
                        dir, "coupler", &out, &err);
   EXPECT_EQ(code, 2);  // the scene names a model the module does not offer: bad input
   EXPECT_NE(err.find("lattice_boltzmann"), std::string::npos) << err;
@@ -176,7 +184,8 @@ TEST(Faults, ClosedStdoutLetsTheRunFinish) {
   int fds[2];
   ASSERT_EQ(pipe2(fds, O_CLOEXEC), 0);
   const Spawned coupler =
-      spawn({bin("coupler"), "run", kPressureGradientScene, "--out", (dir / "out").string()}, dir, "coupler", fds[1]);
+      spawn({bin("coupler"), "run", kPressureGradientScene, "--out", (dir / "out").string()}, dir,
+            "coupler", fds[1]);
   const KillOnExit guard{coupler.pid};
   close(fds[0]);  // no reader from here on
   close(fds[1]);

@@ -24,13 +24,14 @@ const std::vector<std::string> kShort = {"--set", "time.end_time_s=0.002"};
 TEST(OutDir, ASecondRunIntoTheSameDirectoryIsRefusedNamingTheFirst) {
   const fs::path dir = fresh_dir("out_dir_lock");
   const fs::path out = dir / "out";
-  std::vector<std::string> first = {bin("coupler"), "run", kDryReducedScene, "--out", out.string(),
-                                    "--set", "time.end_time_s=0.01"};
+  std::vector<std::string> first = {bin("coupler"), "run",   kDryReducedScene,      "--out",
+                                    out.string(),   "--set", "time.end_time_s=0.01"};
   const Spawned a = spawn(first, dir, "first");
   KillOnExit guard{a.pid};
   while (!fs::exists(out / "run.h5")) ASSERT_FALSE(wait_exit(a.pid, 5ms).has_value());
   std::string err;
-  std::vector<std::string> second = {bin("coupler"), "run", kDryReducedScene, "--out", out.string()};
+  std::vector<std::string> second = {bin("coupler"), "run", kDryReducedScene, "--out",
+                                     out.string()};
   second.insert(second.end(), kShort.begin(), kShort.end());
   EXPECT_EQ(run(second, dir, "second", nullptr, &err), 2);
   EXPECT_NE(err.find("is in use by another run (coupler pid " + std::to_string(a.pid) + ")"),
@@ -54,8 +55,9 @@ TEST(OutDir, AFreshRunDropsTheSummaryAndCheckpointsOfAnEarlierOne) {
   ASSERT_EQ(earlier.code, 0) << earlier.err;
   ASSERT_TRUE(fs::exists(earlier.out / "summary.json"));
   ASSERT_TRUE(fs::exists(earlier.out / "checkpoints"));
-  std::vector<std::string> argv = {bin("coupler"), "run", kDryReducedScene, "--out", earlier.out.string(),
-                                   "--overwrite", "--set", "time.end_time_s=0.05"};
+  std::vector<std::string> argv = {
+      bin("coupler"),       "run",         kDryReducedScene, "--out",
+      earlier.out.string(), "--overwrite", "--set",          "time.end_time_s=0.05"};
   const Spawned s = spawn(argv, dir, "fresh");
   KillOnExit guard{s.pid};
   // Killed early: what is left must not pair the earlier summary with the new run.h5.
@@ -129,8 +131,8 @@ TEST(OutDir, AFileSizeLimitStopsTheRunWithExitCode5AndASummary) {
   const fs::path out = dir / "out";
   std::string err;
   const int code = run({"/bin/sh", "-c",
-                        "ulimit -f 300; exec " + bin("coupler") + " run " + kDryReducedScene + " --out " +
-                            out.string() + " --set time.end_time_s=0.01"},
+                        "ulimit -f 300; exec " + bin("coupler") + " run " + kDryReducedScene +
+                            " --out " + out.string() + " --set time.end_time_s=0.01"},
                        dir, "full", nullptr, &err);
   EXPECT_EQ(code, 5) << err;
   // dash's `ulimit -f` counts 512-byte blocks: 300 of them.
@@ -179,8 +181,9 @@ TEST(OutDir, TheSocketDirectoryOfAKilledCouplerIsRemovedByTheNextRun) {
   ASSERT_NE(mkdtemp(templ.data()), nullptr);
   const fs::path tmp = templ;
   ASSERT_EQ(setenv("TMPDIR", tmp.c_str(), 1), 0);
-  std::vector<std::string> argv = {bin("coupler"), "run", kDryReducedScene, "--out", (dir / "killed").string(),
-                                   "--set", "time.end_time_s=0.05"};
+  std::vector<std::string> argv = {
+      bin("coupler"),        "run", kDryReducedScene, "--out", (dir / "killed").string(), "--set",
+      "time.end_time_s=0.05"};
   const Spawned s = spawn(argv, dir, "killed");
   {
     KillOnExit guard{s.pid};

@@ -51,7 +51,8 @@ double row_value(int row) { return 0.5 * row; }
                               {{"force", row_value(row)}});
       }
       const std::vector<double> xy = frame_positions(f);
-      run.write_frame(f * 0.1, static_cast<std::uint64_t>(row), kCrashParticles, {{"position", 2, xy}});
+      run.write_frame(f * 0.1, static_cast<std::uint64_t>(row), kCrashParticles,
+                      {{"position", 2, xy}});
     }
     run.append_timeseries(1.0, 999, {{"force", -1.0}});  // after the last flush
     raise(SIGKILL);  // the crash: `run` is never closed or destroyed

@@ -31,7 +31,8 @@ std::vector<double> positions(int frame) {
 
 std::vector<double> radii(int frame) {
   std::vector<double> r;
-  for (std::size_t i = 0; i < kFrameParticles; ++i) r.push_back(1e-3 * static_cast<double>(i + 1) / (frame + 1));
+  for (std::size_t i = 0; i < kFrameParticles; ++i)
+    r.push_back(1e-3 * static_cast<double>(i + 1) / (frame + 1));
   return r;
 }
 
@@ -81,7 +82,8 @@ TEST(RunFileFrames, ThreeFramesReadBackExactly) {
     SCOPED_TRACE(group);
     EXPECT_EQ(read_doubles(file.get(), group + "/position"), positions(f));
     EXPECT_EQ(read_doubles(file.get(), group + "/radius"), radii(f));
-    EXPECT_EQ(dataset_dims(file.get(), group + "/position"), (std::vector<hsize_t>{kFrameParticles, 2}));
+    EXPECT_EQ(dataset_dims(file.get(), group + "/position"),
+              (std::vector<hsize_t>{kFrameParticles, 2}));
     EXPECT_EQ(dataset_dims(file.get(), group + "/radius"), (std::vector<hsize_t>{kFrameParticles}));
     h5::Handle g = h5::group(H5Gopen2(file.get(), group.c_str(), H5P_DEFAULT), group, "open");
     EXPECT_EQ(read_double_attribute(g.get(), "time_s"), times[f]);
@@ -144,7 +146,8 @@ TEST(RunFileFrames, MalformedFramesAreRejectedAndLeaveNoGroup) {
   {
     RunFile run(dir, "scene", {});
     EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"radius", 1, r}}), std::invalid_argument);
-    EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 1, r}}), std::invalid_argument);
+    EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 1, r}}),
+                 std::invalid_argument);
     EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 2, xy}, {"radius", 1, xy}}),
                  std::invalid_argument);
     EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 2, xy}, {"stress", 3, {}}}),
@@ -153,7 +156,8 @@ TEST(RunFileFrames, MalformedFramesAreRejectedAndLeaveNoGroup) {
                  std::invalid_argument);
     EXPECT_THROW(run.write_frame(0, 0, kFrameParticles, {{"position", 2, xy}, {"position", 2, xy}}),
                  std::invalid_argument);
-    EXPECT_THROW(run.write_frame(NAN, 0, kFrameParticles, {{"position", 2, xy}}), std::invalid_argument);
+    EXPECT_THROW(run.write_frame(NAN, 0, kFrameParticles, {{"position", 2, xy}}),
+                 std::invalid_argument);
     EXPECT_EQ(run.frame_count(), 0u);
     run.write_frame(1.0, 1, kFrameParticles, {{"position", 2, xy}});
     EXPECT_EQ(run.frame_count(), 1u);

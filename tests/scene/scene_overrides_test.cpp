@@ -29,7 +29,8 @@ std::vector<Diagnostic> errors_of(const std::vector<std::string>& overrides) {
 }
 
 template <class... Words>
-void expect_override_error(const std::vector<std::string>& overrides, const std::string& prefix, Words... words) {
+void expect_override_error(const std::vector<std::string>& overrides, const std::string& prefix,
+                           Words... words) {
   const std::vector<Diagnostic> errors = errors_of(overrides);
   ASSERT_EQ(errors.size(), 1u);
   EXPECT_THAT(errors[0].to_string(), AllOf(StartsWith(prefix), HasSubstr(words)...));
@@ -56,14 +57,15 @@ TEST(SceneOverrides, CreatesAnAbsentBlock) {
 }
 
 TEST(SceneOverrides, BlockCreatedByAnOverrideIsValidatedThere) {
-  expect_override_error({"fluid.prescribed_gradient.pressure_gradient_pa_m.x=1"}, "--set:1:1: ",
-             "missing required field \"fluid.model\"");
+  expect_override_error({"fluid.prescribed_gradient.pressure_gradient_pa_m.x=1"},
+                        "--set:1:1: ", "missing required field \"fluid.model\"");
 }
 
 TEST(SceneOverrides, UnknownPathSuggestsNearest) {
   expect_override_error({"time.end_time_s=2", "time.end_tme=2"}, "--set:2:6: ",
-             "unknown field \"time.end_tme\" (did you mean \"time.end_time_s\"?)");
-  expect_override_error({"frobnicate=1"}, "--set:1:1: ", "unknown field \"frobnicate\"; valid names: title, time");
+                        "unknown field \"time.end_tme\" (did you mean \"time.end_time_s\"?)");
+  expect_override_error({"frobnicate=1"},
+                        "--set:1:1: ", "unknown field \"frobnicate\"; valid names: title, time");
 }
 
 TEST(SceneOverrides, BadValues) {
@@ -75,15 +77,17 @@ TEST(SceneOverrides, BadValues) {
 
 TEST(SceneOverrides, TargetsThatAreNotSingleValues) {
   expect_override_error({"output.frame_fields=position"}, "--set:1:8: ", "repeated field");
-  expect_override_error({"dem.lattice=3"}, "--set:1:5: ", "\"dem.lattice\" is a block", "dem.lattice.nx");
-  expect_override_error({"time.end_time_s.x=1"}, "--set:1:17: ", "\"time.end_time_s\" is a double, not a block");
+  expect_override_error({"dem.lattice=3"}, "--set:1:5: ", "\"dem.lattice\" is a block",
+                        "dem.lattice.nx");
+  expect_override_error({"time.end_time_s.x=1"},
+                        "--set:1:17: ", "\"time.end_time_s\" is a double, not a block");
   expect_override_error({"time..end_time_s=1"}, "--set:1:6: ", "empty field name");
   expect_override_error({"time.end_time_s"}, "--set:1:1: ", "expected dotted.path=value");
 }
 
 TEST(SceneOverrides, OutOfRangeIsLocatedAtTheOverride) {
   expect_override_error({"title=x", "dem.density_kg_m3=-1"}, "--set:2:19: ",
-             "dem.density_kg_m3 = -1 is out of range: must be > 0 [kg/m^3]");
+                        "dem.density_kg_m3 = -1 is out of range: must be > 0 [kg/m^3]");
 }
 
 TEST(SceneOverrides, FileErrorsAndOverrideErrorsTogether) {

@@ -9,8 +9,8 @@
 #include <numeric>
 
 #include "wire/message.hpp"
-#include "wire/socket_pair.hpp"
 #include "wire/shared_payload.hpp"
+#include "wire/socket_pair.hpp"
 
 namespace rockcut::wire {
 namespace {

@@ -1,4 +1,5 @@
-// A connected socket pair inside one context, what the coupler and a module see, for the wire tests.
+// A connected socket pair inside one context, what the coupler and a module see, for the wire
+// tests.
 #pragma once
 
 #include <string>

@@ -25,12 +25,13 @@ std::vector<std::pair<const char*, double>> EnergyBudget::terms() const {
           {"kinetic_energy_j", kinetic_energy_j}, {"strain_energy_j", strain_energy_j}};
   if (viscous_damping_j > 0) terms.push_back({"viscous_damping_bonds_j", viscous_damping_bonds_j});
   if (bond_softening_j > 0) terms.push_back({"bond_softening_j", bond_softening_j});
+  if (lag_correction_j > 0) terms.push_back({"lag_correction_j", lag_correction_j});
   return terms;
 }
 
 double EnergyBudget::initial_j() const {
   const double held = kinetic_energy_j + strain_energy_j + damping_j + friction_j + broken_bond_j +
-                      viscous_damping_j + rolling_j;
+                      viscous_damping_j + rolling_j + lag_correction_j;
   const double work = boundary_work_j + external_work_j + gravity_work_j;
   const double e0 = held + imbalance_j - work;
   // A specimen at rest and zero stress has E0 = 0, which this difference gives up to round-off.
@@ -65,6 +66,7 @@ std::optional<EnergyBudget> energy_budget(
   }
   if (const double* v = find_value(scalars, "rolling_j")) b.rolling_j = *v;
   if (const double* v = find_value(scalars, "bond_softening_j")) b.bond_softening_j = *v;
+  if (const double* v = find_value(scalars, "lag_correction_j")) b.lag_correction_j = *v;
   return b;
 }
 
@@ -99,6 +101,7 @@ std::string describe(const EnergyBudget& b, const std::string& external) {
   }
   sink("friction", b.friction_j);
   if (b.rolling_j > 0) sink("rolling resistance", b.rolling_j);
+  if (b.lag_correction_j > 0) sink("the coupling lag's correction", b.lag_correction_j);
   if (b.external_work_j < 0) sink(external, -b.external_work_j);
   if (b.boundary_work_j < 0) sink("walls and tool", -b.boundary_work_j);
   if (b.gravity_work_j < 0) sink("gravity", -b.gravity_work_j);

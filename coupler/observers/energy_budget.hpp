@@ -26,6 +26,8 @@ struct EnergyBudget {
   double viscous_damping_bonds_j = 0.0;
   double bond_softening_j = 0.0;  ///< the part of broken_bond_j softening bonds dissipated
   double rolling_j = 0.0;          ///< dissipated by rolling resistance (likewise)
+  /// Taken out by the coupling lag's dashpot (Coupling.lag_correction; 0 without it).
+  double lag_correction_j = 0.0;
   double kinetic_energy_j = 0.0;
   double strain_energy_j = 0.0;
   double imbalance_j = 0.0;      ///< given - held (energy_imbalance_j)

@@ -133,8 +133,10 @@ std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
     // How the fluid's force is applied between exchanges matters only to the lag's ladder.
     const std::string row_fluid_force =
         column_fluid_force < 0 ? "held" : cells[column_fluid_force];
-    if (row_fluid_force != "held" && row_fluid_force != "extrapolated")
-      bad(csv, line_no, "unknown fluid_force \"" + row_fluid_force + "\": held or extrapolated");
+    if (row_fluid_force != "held" && row_fluid_force != "extrapolated" &&
+        row_fluid_force != "extrapolated+passivity")
+      bad(csv, line_no, "unknown fluid_force \"" + row_fluid_force +
+                            "\": held, extrapolated or extrapolated+passivity");
     if (row_fluid_force != "held" && ladder->second != &model.fluid_step_ratio)
       bad(csv, line_no, "fluid_force \"" + row_fluid_force + "\" on the ladder " +
                             ladder->first + ": only fluid_step_ratio depends on it");
@@ -181,7 +183,7 @@ std::optional<double> expected_force_error(const ErrorModel& model, const CutSet
   std::string text;
   for (const Part& p : parts) {
     if (p.ladder.empty()) {
-      if (detail) *detail = std::string(p.name) + ": no measurement with the extrapolated force";
+      if (detail) *detail = std::string(p.name) + ": no measurement with this coupling.fluid_force and lag_correction";
       return std::nullopt;
     }
     const std::optional<double> e = interpolate(p.ladder, p.value);
@@ -211,7 +213,9 @@ std::optional<std::string> expected_error_line(const rockcut::Scene& scene, cons
   std::vector<std::string> studied;
   try {
     model = read_error_model(error_model_path(program_dir), damping, &studied,
-                             plan.extrapolate_fluid_force ? "extrapolated" : "held");
+                             !plan.extrapolate_fluid_force ? "held"
+                             : plan.lag_passivity          ? "extrapolated+passivity"
+                                                           : "extrapolated");
   } catch (const std::runtime_error& e) {
     return std::string("accuracy   no estimate: ") + e.what();
   }

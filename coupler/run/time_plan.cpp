@@ -116,6 +116,8 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
     }
     plan.extrapolate_fluid_force =
         plan.coupling_interval > 1 && scene.coupling().fluid_force() == "extrapolated";
+    plan.lag_passivity =
+        plan.coupling_interval > 1 && scene.coupling().lag_correction() == "passivity";
     plan.report.push_back(
         "chosen coupling interval N = " + std::to_string(plan.coupling_interval) +
         ", fluid step " + fmt(plan.coupling_interval * plan.dt_s) + " s" +
@@ -160,6 +162,18 @@ std::vector<Limit> applicable_fluid_limits(const rockcut::Scene& scene, std::vec
                                     ? wire::LIMIT_KIND_PORE_FLUID_STIFFNESS
                                     : wire::LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED;
   std::erase_if(limits, [&](const Limit& l) { return l.kind == other; });
+  // The lag's energy taken out (Coupling.lag_correction "passivity") moves the extrapolated
+  // force's limit by kLagPassivityLimitFactor, measured (docs/record/accuracy.md, "The lag's
+  // energy taken out"); the held force's limit was not measured with it and stays.
+  if (scene.coupling().lag_correction() == "passivity" &&
+      scene.coupling().fluid_force() == "extrapolated") {
+    for (Limit& l : limits) {
+      if (l.kind != wire::LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED) continue;
+      l.dt_max_s *= kLagPassivityLimitFactor;
+      l.detail += "; x " + fmt(kLagPassivityLimitFactor) +
+                  " with the lag's energy taken out (coupling.lag_correction \"passivity\")";
+    }
+  }
   return limits;
 }
 

@@ -21,6 +21,7 @@ void HalfStepExchange::exchange(RunClock& clock, unsigned steps, bool initial,
   advance->set_split_last(true);
   advance->set_forces_before_reply(plan_.forces_before_reply);
   advance->set_extrapolate_fluid_force(plan_.extrapolate_fluid_force);
+  advance->set_lag_passivity(plan_.lag_passivity);
   if (forces_held_) {
     advance->set_apply_forces_first(true);
     dem_.request.take_arrays(fluid_.reply);

@@ -192,6 +192,18 @@ void DemSystem::save_state(StateArchive& a) const {
     a.put("fluid_force_at_exchange_n_per_m", extrapolation_.last_force, 2);
     a.put_scalar("fluid_force_exchange_time_s", extrapolation_.last_time_s);
   }
+  const FluidForcePassivity& lag = passivity_;
+  if (lag.on && !lag.position_at_exchange.empty()) {  // only where the scene corrects the lag
+    a.put("lag_position_at_exchange_m", lag.position_at_exchange, 2);
+    a.put("lag_force_at_exchange_n_per_m", lag.force_at_exchange, 2);
+    a.put("lag_work_j", lag.work_j);
+    a.put("lag_speed2_dt_m2_s", lag.speed2_dt);
+    a.put("lag_residual_j", lag.residual_j);
+    a.put("lag_coefficient_n_s_per_m2", lag.coefficient);
+    a.put("lag_force_n_per_m", lag.force, 2);
+    a.put_scalar("lag_exchange_step", static_cast<double>(lag.exchange_step));
+    a.put_scalar("ledger_lag_correction_j", ledger_.lag_correction_j);
+  }
 }
 
 void DemSystem::load_state(const StateArchive& a) {
@@ -261,6 +273,21 @@ void DemSystem::assign_state(const StateArchive& a) {
     a.get("fluid_force_rate_n_per_m_s", extrapolation_.rate, 2 * n);
     a.get("fluid_force_at_exchange_n_per_m", extrapolation_.last_force, 2 * n);
     extrapolation_.last_time_s = a.scalar("fluid_force_exchange_time_s");
+  }
+  // The lag's observer; a state without one starts it afresh at the next exchange.
+  passivity_ = FluidForcePassivity{};
+  if (a.has("lag_position_at_exchange_m")) {
+    FluidForcePassivity& lag = passivity_;
+    lag.on = true;
+    a.get("lag_position_at_exchange_m", lag.position_at_exchange, 2 * n);
+    a.get("lag_force_at_exchange_n_per_m", lag.force_at_exchange, 2 * n);
+    a.get("lag_work_j", lag.work_j, n);
+    a.get("lag_speed2_dt_m2_s", lag.speed2_dt, n);
+    a.get("lag_residual_j", lag.residual_j, n);
+    a.get("lag_coefficient_n_s_per_m2", lag.coefficient, n);
+    a.get("lag_force_n_per_m", lag.force, 2 * n);
+    lag.exchange_step = a.scalar_as<std::uint64_t>("lag_exchange_step");
+    ledger_.lag_correction_j = a.scalar("ledger_lag_correction_j");
   }
   // The thread shares of the restored lists, as after the rebuild that made them.
   update_force_windows();

@@ -117,6 +117,7 @@ ThreadSums DemSystem::total_sums() const {
     total.external_work_j += s.external_work_j;
     total.gravity_work_j += s.gravity_work_j;
     total.damping_j += s.damping_j;
+    total.lag_correction_j += s.lag_correction_j;
     total.pairs.friction_j += s.pairs.friction_j;
     total.pairs.viscous_j += s.pairs.viscous_j;
     total.bond_viscous_j += s.bond_viscous_j;
@@ -131,6 +132,7 @@ void DemSystem::book(const ThreadSums& s) {
   ledger_.external_work_j += s.external_work_j;
   ledger_.gravity_work_j += s.gravity_work_j;
   ledger_.damping_j += s.damping_j;
+  ledger_.lag_correction_j += s.lag_correction_j;
   ledger_.friction_j += s.pairs.friction_j;
   ledger_.viscous_damping_j += s.pairs.viscous_j;
   ledger_.viscous_damping_bonds_j += s.bond_viscous_j;
@@ -158,10 +160,15 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
   const double* fd = damping_force_.empty() ? nullptr : damping_force_.data();
   // The extrapolated external force moves on to t^{n+1} after its F^n half of the work.
   const double* fr = extrapolation_.rate.empty() ? nullptr : extrapolation_.rate.data();
+  // The lag's dashpot (core/fluid_force_passivity.hpp): its F^n half, and the grain's work and S.
+  const bool passive = passivity_.active();
+  double* pw = passivity_.work_j.data();
+  double* ps = passivity_.speed2_dt.data();
+  const double* pf = passivity_.force.data();
   const double gx = settings_.gravity_x_m_s2, gy = settings_.gravity_y_m_s2;
   const bool body = has_body_forces_;
   const bool weighed = has_gravity();
-  double vmax2 = 0.0, work = 0.0, gravity = 0.0, damping = 0.0;
+  double vmax2 = 0.0, work = 0.0, gravity = 0.0, damping = 0.0, correction = 0.0;
   // Verlet moves x by v^{n+1/2} dt under the mean of F^n and F^{n+1}: each force's work over the
   // drift is the trapezoid 1/2 (F^n + F^{n+1}) . dx. The F^n halves are added here, the F^{n+1}
   // halves in finish_range().
@@ -179,6 +186,11 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
       work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * 0.5 * dt;
       if (weighed) gravity += (gx * vx + gy * vy) / inv_m[i] * 0.5 * dt;
     }
+    if (passive) {
+      pw[i] += ((fe[2 * i] + pf[2 * i]) * vx + (fe[2 * i + 1] + pf[2 * i + 1]) * vy) * 0.5 * dt;
+      ps[i] += (vx * vx + vy * vy) * dt;
+      correction -= (pf[2 * i] * vx + pf[2 * i + 1] * vy) * 0.5 * dt;
+    }
     if (fr) {
       fe[2 * i] += fr[2 * i] * dt;
       fe[2 * i + 1] += fr[2 * i + 1] * dt;
@@ -194,6 +206,7 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
   sums.external_work_j += work;
   sums.gravity_work_j += gravity;
   sums.damping_j += damping;
+  sums.lag_correction_j += correction;
 }
 
 void DemSystem::reset_forces_range(std::size_t begin, std::size_t end) {
@@ -252,13 +265,26 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
   const double h = 0.5 * dt_last_;  // the F^{n+1} half of the trapezoid, see drift_range()
   const bool body = has_body_forces_;
   const bool weighed = has_gravity();
-  double damping = 0.0, work = 0.0, gravity = 0.0;
+  const bool passive = passivity_.active();
+  double* pw = passivity_.work_j.data();
+  const double* pc = passivity_.coefficient.data();
+  double* pf = passivity_.force.data();
+  double damping = 0.0, work = 0.0, gravity = 0.0, correction = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
     double fx = f[2 * i] + fe[2 * i], fy = f[2 * i + 1] + fe[2 * i + 1], tq = q[i];
     const double vx = v[2 * i], vy = v[2 * i + 1];
     if (body) {
       work += (fe[2 * i] * vx + fe[2 * i + 1] * vy) * h;
       if (weighed) gravity += (gx * vx + gy * vy) / inv_m[i] * h;
+    }
+    if (passive) {  // the lag's dashpot on v^{n+1/2}, and its F^{n+1} half
+      const double cx = -pc[i] * vx, cy = -pc[i] * vy;
+      pf[2 * i] = cx;
+      pf[2 * i + 1] = cy;
+      pw[i] += ((fe[2 * i] + cx) * vx + (fe[2 * i + 1] + cy) * vy) * h;
+      correction -= (cx * vx + cy * vy) * h;
+      fx += cx;
+      fy += cy;
     }
     if (alpha > 0) {
       // Eq. 10 per degree of freedom: F_d = -alpha |F| sign(v), with v = v^{n+1/2}.
@@ -283,6 +309,7 @@ void DemSystem::finish_range(std::size_t begin, std::size_t end, double kick_dt,
     }
   }
   sums.damping_j += damping;
+  sums.lag_correction_j += correction;
   sums.external_work_j += work;
   sums.gravity_work_j += gravity;
 }
@@ -534,49 +561,9 @@ void DemSystem::finish_step(double dt, std::span<const double> external) {
   extrapolation_.take(external, time_s_);
   if (!internal_forces_current_) compute_internal_forces();
   finish_forces(settings_.prescribed_motion ? 0.0 : dt);
+  passivity_.exchange(particles_.position, external, particles_.inv_mass, dt, steps_);
   in_split_step_ = false;
   if (!servos_.empty()) steer_servo_walls();
-}
-
-void DemSystem::hold_external_force(std::span<const double> external) {
-  if (external.size() != particles_.external_force.size()) {
-    throw std::invalid_argument("external force has " + std::to_string(external.size()) +
-                                " values for " + std::to_string(particles_.size()) + " particles");
-  }
-  std::copy(external.begin(), external.end(), particles_.external_force.begin());
-  if (!has_body_forces_) {
-    has_body_forces_ = std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
-  }
-  for (std::size_t k = 0; k < membrane_.particles.size(); ++k) {
-    particles_.external_force[2 * membrane_.particles[k]] += membrane_.force_x_n_per_m[k];
-  }
-}
-
-void DemSystem::add_membrane_load(MembraneLoad load) {
-  membrane_ = std::move(load);
-  has_body_forces_ = has_body_forces_ || !membrane_.particles.empty();  // its work is booked
-  // The fluid's part of the held force stays; the membrane is added on top by the hold.
-  std::vector<double> held = particles_.external_force;
-  hold_and_reevaluate(held);
-}
-
-void DemSystem::extrapolate_external_force(bool on) {
-  if (on == extrapolation_.on) return;
-  extrapolation_ = FluidForceExtrapolation{};
-  extrapolation_.on = on;
-}
-
-void DemSystem::set_external_force(std::span<const double> external) {
-  hold_and_reevaluate(external);  // checks the size first: a refused force changes nothing
-  extrapolation_.take(external, time_s_);
-}
-
-void DemSystem::hold_and_reevaluate(std::span<const double> external) {
-  hold_external_force(external);
-  // At rest (t = 0) a^n is re-evaluated from scratch; inside a split step the internal forces at
-  // x^{n+1} may already have been computed while the fluid worked.
-  if (!in_split_step_ || !internal_forces_current_) compute_internal_forces();
-  finish_forces(0.0);
 }
 
 double DemSystem::kinetic_energy() const {

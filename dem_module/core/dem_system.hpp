@@ -13,6 +13,7 @@
 #include "core/contact_list.hpp"
 #include "core/energy.hpp"
 #include "core/fluid_force_extrapolation.hpp"
+#include "core/fluid_force_passivity.hpp"
 #include "core/force_buffers.hpp"
 #include "core/particles.hpp"
 #include "wire/phase_clock.hpp"
@@ -58,7 +59,7 @@ struct ClampedGroup {
 /// same thread count gives the same bits. A cache line each, so the threads do not share one.
 struct alignas(64) ThreadSums {
   double vmax2 = 0.0;  ///< largest v^2 [m^2/s^2]
-  double external_work_j = 0.0, gravity_work_j = 0.0, damping_j = 0.0;
+  double external_work_j = 0.0, gravity_work_j = 0.0, damping_j = 0.0, lag_correction_j = 0.0;
   ContactDissipation pairs;  ///< friction, dashpots, rolling springs
   double bond_viscous_j = 0.0;  ///< the part of pairs.viscous_j taken by the bonds' dashpots
   double bond_softening_j = 0.0;  ///< dissipated by softening bonds
@@ -86,6 +87,10 @@ class DemSystem {
   /// (core/fluid_force_extrapolation.hpp); off: hold it (and drop the rate).
   void extrapolate_external_force(bool on);
   bool external_force_extrapolated() const { return extrapolation_.on; }
+  /// From the next exchange on, take out the energy the lag between exchanges generates
+  /// (core/fluid_force_passivity.hpp); off: drop the observer.
+  void correct_lag_passively(bool on);
+  const FluidForcePassivity& lag_passivity() const { return passivity_; }
   /// Holds the y velocity of `particles` at velocity_y_m_s from now on (dry scenes: an external y
   /// force on them is cancelled too). Returns the group's index for clamped_group().
   /// `fixed`: held at rest in x and spin too (velocity_y_m_s 0), the rock mass under a cut block.
@@ -193,6 +198,7 @@ class DemSystem {
   std::vector<std::uint32_t> freed_pairs_;
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
   FluidForceExtrapolation extrapolation_;  ///< the external force's rate between exchanges
+  FluidForcePassivity passivity_;          ///< the lag's energy observer and dashpot
   std::vector<ClampedGroup> clamped_;
   std::vector<WallServo> servos_;
   MembraneLoad membrane_;

@@ -18,6 +18,8 @@ struct EnergyLedger {
                                   ///< contact keeps) and dissipated by softening
   double viscous_damping_j = 0.0; ///< dissipated by the dashpots (>= 0)
   double rolling_j = 0.0;         ///< dissipated by rolling springs cut to their limit (>= 0)
+  /// Taken out by the coupling lag's dashpot (core/fluid_force_passivity.hpp, >= 0).
+  double lag_correction_j = 0.0;
   /// The part of viscous_damping_j taken by the bonds' dashpots: the intact rock's vibration.
   /// The rest is the contacts' and the walls' (collisions of loose discs and chips).
   double viscous_damping_bonds_j = 0.0;

@@ -182,6 +182,7 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
                              " guard; only frames can be asked for");
   }
   s.extrapolate_external_force(advance.extrapolate_fluid_force());
+  s.correct_lag_passively(advance.lag_passivity());
   if (advance.apply_forces_first()) {
     // The held ApplyForces of the last exchange (no output was due at its step). The guards run
     // on the completed step at the same cadence as inside a long Advance.
@@ -269,7 +270,7 @@ void DemService::report(wire::Message& reply) {
   const double given =
       setup_.initial_energy_j + e.boundary_work_j + e.external_work_j + e.gravity_work_j;
   const double held = kinetic + strain + e.damping_j + e.friction_j + e.broken_bond_j +
-                      e.viscous_damping_j + e.rolling_j;
+                      e.viscous_damping_j + e.rolling_j + e.lag_correction_j;
   const double throughput =
       setup_.initial_energy_j + std::abs(e.boundary_work_j) + std::abs(e.external_work_j) +
       std::abs(e.gravity_work_j);
@@ -284,6 +285,7 @@ void DemService::report(wire::Message& reply) {
   out["viscous_damping_j"] = e.viscous_damping_j;
   if (e.viscous_damping_j > 0) out["viscous_damping_bonds_j"] = e.viscous_damping_bonds_j;
   out["rolling_j"] = e.rolling_j;
+  if (s.lag_passivity().on) out["lag_correction_j"] = e.lag_correction_j;
   out["bonds"] = static_cast<double>(s.bonds().size());
   // Since the run's start (kept over resumes): what a cut's flying fragments cost in list work.
   out["neighbour_rebuilds"] = static_cast<double>(s.neighbour_rebuilds());

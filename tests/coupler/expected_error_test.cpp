@@ -169,7 +169,7 @@ TEST(ExpectedError, ABadTableIsNamedWithItsLine) {
               HasSubstr("table.csv:2: fluid_force \"extrapolated\" on the ladder dt_safety: only "
                         "fluid_step_ratio depends on it"));
   EXPECT_THAT(error_of("ladder,value,force_error,fluid_force\ndt_safety,0.4,0.1,implicit\n"),
-              HasSubstr("table.csv:2: unknown fluid_force \"implicit\": held or extrapolated"));
+              HasSubstr("table.csv:2: unknown fluid_force \"implicit\": held, extrapolated or extrapolated+passivity"));
   const fs::path forces = dir / "forces.csv";
   std::string held_rows;
   for (std::size_t at = 0, end; (end = good.find('\n', at)) != std::string::npos; at = end + 1)
@@ -189,7 +189,7 @@ TEST(ExpectedError, ABadTableIsNamedWithItsLine) {
   EXPECT_TRUE(unstudied->fluid_step_ratio.empty());
   std::string why;
   EXPECT_FALSE(expected_force_error(*unstudied, {0.2, 0.5, 2.0, 0.5}, &why).has_value());
-  EXPECT_THAT(why, HasSubstr("no measurement with the extrapolated force"));
+  EXPECT_THAT(why, HasSubstr("no measurement with this coupling.fluid_force and lag_correction"));
   const fs::path missing = dir / "none.csv";
   try {
     read_error_model(missing);

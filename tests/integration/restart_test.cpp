@@ -197,9 +197,10 @@ INSTANTIATE_TEST_SUITE_P(
                            {"--set", "dem.contact.rolling_friction=0.1", "--set",
                             "fluid.open_water_drag=true"},
                            "_rolling_drag"},
-                      // The dynamic scenes' fluid force, extrapolated between exchanges at
-                      // N = 4: its line through the last two exchanges is state (the case
-                      // above runs it too, on one thread and inproc).
+                      // The dynamic scene's fluid force, extrapolated between exchanges at
+                      // N = 8 with the lag's energy taken out: its line through the last two
+                      // exchanges and the observer's residuals are state (the case above runs
+                      // it too, on one thread and inproc).
                       Case{"saturated_reduced_long_viscous", "2", "ipc"},
                       // The pore fluid on points of about four grains (its clusters are
                       // rebuilt from the scene, its state is the points').

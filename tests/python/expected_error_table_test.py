@@ -5,7 +5,8 @@ studies' output: its errors are recomputed here from the studies' committed runs
 docs/accuracy/interval_0000m.csv (the paired differences of N = 10 ... 2). Dashpots (the peak
 force): docs/accuracy/viscous/accuracy.csv (dt_safety, h, size) and
 docs/accuracy/viscous/interval_0000m.csv (the paired difference of N = 3 over sixteen seeds) and,
-for the fluid's force extrapolated between exchanges, interval_extrapolated_0000m.csv (N = 4).
+for the fluid's force extrapolated between exchanges, interval_extrapolated_0000m.csv (N = 4), and
+with the lag's energy taken out, interval_passivity_0000m.csv (N = 8).
 And rockcut accuracy writes a table of the same form.
 
   tests/python/expected_error_table_test.py --coupler build/bin/coupler --tmp DIR
@@ -105,19 +106,28 @@ class TableIsTheStudys(unittest.TestCase):
         self.assertEqual(self.errors("fluid_step_ratio", "viscous")[-1][1], 0.0)
         self.assertEqual(len(self.errors("fluid_step_ratio", "viscous")), 2)
 
-    def test_the_extrapolated_force_from_its_sixteen_seeds(self):
-        # N = 4, the largest the extrapolated force's limit allows, placed at the limit itself;
-        # N = 1 has no lag. Only the lag's ladder depends on how the force is applied.
-        rows = harness.read_csv(os.path.join(DOCS, "viscous", "interval_extrapolated_0000m.csv"))
+    def check_lag_ladder(self, study_csv, n, fluid_force, n1_ratio):
+        """The table's lag ladder for `fluid_force`: N = n, the largest its limit allows, placed at
+        the limit itself, with its sixteen-seed paired error; N = 1 (no lag) at n1_ratio."""
+        rows = harness.read_csv(os.path.join(DOCS, "viscous", study_csv))
         paired = {int(v): (runs_, rel) for v, runs_, _, _, _, _, rel, _ in
                   paired_table(rows, "force_horizontal_peak_n_per_m")}
-        self.assertEqual(paired[4][0], 16)
-        ladder = self.errors("fluid_step_ratio", "viscous", "extrapolated")
-        self.assertEqual(ladder[0], (1.0, round(abs(paired[4][1]), 4)))
-        self.assertEqual(ladder[-1], (0.2008, 0.0))
+        self.assertEqual(paired[n][0], 16)
+        ladder = self.errors("fluid_step_ratio", "viscous", fluid_force)
+        self.assertEqual(ladder[0], (1.0, round(abs(paired[n][1]), 4)))
+        self.assertEqual(ladder[-1], (n1_ratio, 0.0))
         self.assertEqual(len(ladder), 2)
+        # Only the lag's ladder depends on how the force is applied.
         for other in ("dt_safety", "h_per_diameter", "size_scale"):
-            self.assertEqual(self.errors(other, "viscous", "extrapolated"), [], other)
+            self.assertEqual(self.errors(other, "viscous", fluid_force), [], other)
+
+    def test_the_extrapolated_force_from_its_sixteen_seeds(self):
+        # N = 4 at 0.803 of the extrapolated force's limit.
+        self.check_lag_ladder("interval_extrapolated_0000m.csv", 4, "extrapolated", 0.2008)
+
+    def test_the_lags_energy_taken_out_from_its_sixteen_seeds(self):
+        # N = 8 at 0.973 of that limit times 1.65 (coupler/run/time_plan.hpp).
+        self.check_lag_ladder("interval_passivity_0000m.csv", 8, "extrapolated+passivity", 0.1217)
 
 
 class AccuracyWritesTheTable(unittest.TestCase):

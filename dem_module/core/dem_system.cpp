@@ -561,7 +561,8 @@ void DemSystem::finish_step(double dt, std::span<const double> external) {
   extrapolation_.take(external, time_s_);
   if (!internal_forces_current_) compute_internal_forces();
   finish_forces(settings_.prescribed_motion ? 0.0 : dt);
-  passivity_.exchange(particles_.position, external, particles_.inv_mass, dt, steps_);
+  passivity_.exchange(particles_.position, particles_.external_force, particles_.inv_mass, dt,
+                      steps_);
   in_split_step_ = false;
   if (!servos_.empty()) steer_servo_walls();
 }

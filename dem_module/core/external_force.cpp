@@ -40,7 +40,8 @@ void DemSystem::extrapolate_external_force(bool on) {
 void DemSystem::set_external_force(std::span<const double> external) {
   hold_and_reevaluate(external);  // checks the size first: a refused force changes nothing
   extrapolation_.take(external, time_s_);
-  passivity_.exchange(particles_.position, external, particles_.inv_mass, dt_last_, steps_);
+  passivity_.exchange(particles_.position, particles_.external_force, particles_.inv_mass, dt_last_,
+                      steps_);
 }
 
 void DemSystem::correct_lag_passively(bool on) {

@@ -117,9 +117,10 @@ std::string describe(const EnergyBudget& b, const std::string& external) {
 bool EnergyReport::finish(const RunClock& clock, Summary& summary, bool) {
   if (const double* imbalance = clock.scalar("energy_imbalance_rel")) {
     summary.set("energy_imbalance_rel", *imbalance);
-    std::fprintf(stderr, "energy     imbalance %.3g of the energy throughput (given = kinetic + "
-                 "strain + damping + friction + broken bonds + rolling%s)\n", *imbalance,
-                 clock.scalar("lag_correction_j") ? " + the lag's correction" : "");
+    std::fprintf(stderr,
+                 "energy     imbalance %.3g of the energy throughput (given = kinetic + "
+                 "strain + damping + friction + broken bonds + rolling%s)\n",
+                 *imbalance, clock.scalar("lag_correction_j") ? " + the lag's correction" : "");
   }
   if (const std::optional<EnergyBudget> budget = energy_budget(clock.scalars)) {
     for (const auto& [key, value] : budget->terms()) summary.set(key, value);

@@ -135,8 +135,9 @@ std::optional<ErrorModel> read_error_model(const std::filesystem::path& csv,
         column_fluid_force < 0 ? "held" : cells[column_fluid_force];
     if (row_fluid_force != "held" && row_fluid_force != "extrapolated" &&
         row_fluid_force != "extrapolated+passivity")
-      bad(csv, line_no, "unknown fluid_force \"" + row_fluid_force +
-                            "\": held, extrapolated or extrapolated+passivity");
+      bad(csv, line_no,
+          "unknown fluid_force \"" + row_fluid_force +
+              "\": held, extrapolated or extrapolated+passivity");
     if (row_fluid_force != "held" && ladder->second != &model.fluid_step_ratio)
       bad(csv, line_no, "fluid_force \"" + row_fluid_force + "\" on the ladder " +
                             ladder->first + ": only fluid_step_ratio depends on it");
@@ -183,7 +184,9 @@ std::optional<double> expected_force_error(const ErrorModel& model, const CutSet
   std::string text;
   for (const Part& p : parts) {
     if (p.ladder.empty()) {
-      if (detail) *detail = std::string(p.name) + ": no measurement with this coupling.fluid_force and lag_correction";
+      if (detail)
+        *detail = std::string(p.name) +
+                  ": no measurement with this coupling.fluid_force and lag_correction";
       return std::nullopt;
     }
     const std::optional<double> e = interpolate(p.ladder, p.value);

@@ -16,7 +16,8 @@ void DemSystem::hold_external_force(std::span<const double> external) {
   }
   std::copy(external.begin(), external.end(), particles_.external_force.begin());
   if (!has_body_forces_) {
-    has_body_forces_ = std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
+    has_body_forces_ =
+        std::any_of(external.begin(), external.end(), [](double f) { return f != 0.0; });
   }
   for (std::size_t k = 0; k < membrane_.particles.size(); ++k) {
     particles_.external_force[2 * membrane_.particles[k]] += membrane_.force_x_n_per_m[k];

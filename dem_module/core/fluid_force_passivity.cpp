@@ -25,7 +25,7 @@ void FluidForcePassivity::exchange(std::span<const double> position, std::span<c
       const double dx = position[2 * i] - position_at_exchange[2 * i];
       const double dy = position[2 * i + 1] - position_at_exchange[2 * i + 1];
       const double reference = 0.5 * ((force_at_exchange[2 * i] + held[2 * i]) * dx +
-                                       (force_at_exchange[2 * i + 1] + held[2 * i + 1]) * dy);
+                                      (force_at_exchange[2 * i + 1] + held[2 * i + 1]) * dy);
       // Cumulative: what the dashpot took beyond the generation (its c is last interval's S)
       // is credited against the next, so over a run it takes out what the lag put in, no more.
       const double r = residual_j[i] + work_j[i] - reference;

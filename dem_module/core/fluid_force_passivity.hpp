@@ -17,8 +17,9 @@
 // at most m_i / (2 dt) (an explicit dashpot that never reverses a velocity). What it leaves stays
 // in R_i; what it takes beyond (S_i grew) is credited, R_i < 0, against the next generation, so
 // over a run it takes out what the lag put in and no more (the observer of Hannaford & Ryu is
-// cumulative too). At N = 1 there is nothing between exchanges and the controller stays off; it takes out
-// only energy the interface generated, never the fluid's own (W_ref is what the fluid gave).
+// cumulative too). At N = 1 there is nothing between exchanges and the controller stays off; it
+// takes out only energy the interface generated, never the fluid's own (W_ref is what the fluid
+// gave).
 #pragma once
 
 #include <cstddef>
@@ -41,7 +42,7 @@ struct FluidForcePassivity {
   /// quarter more taken out than was at the clip, and the corrected spring gains 1.8 % in twenty
   /// periods (tests/dem/fluid_force_passivity_test.cpp).
   std::vector<double> force;
-  std::uint64_t exchange_step = 0;           ///< the DEM step of x^m
+  std::uint64_t exchange_step = 0;  ///< the DEM step of x^m
 
   /// The DEM's exchange at `step` with the new held force F^{m+1} (`held`) and positions x^{m+1}:
   /// updates R and sets c for the next interval of steps of dt.

@@ -169,7 +169,8 @@ TEST(ExpectedError, ABadTableIsNamedWithItsLine) {
               HasSubstr("table.csv:2: fluid_force \"extrapolated\" on the ladder dt_safety: only "
                         "fluid_step_ratio depends on it"));
   EXPECT_THAT(error_of("ladder,value,force_error,fluid_force\ndt_safety,0.4,0.1,implicit\n"),
-              HasSubstr("table.csv:2: unknown fluid_force \"implicit\": held, extrapolated or extrapolated+passivity"));
+              HasSubstr("table.csv:2: unknown fluid_force \"implicit\": held, extrapolated or "
+                        "extrapolated+passivity"));
   const fs::path forces = dir / "forces.csv";
   std::string held_rows;
   for (std::size_t at = 0, end; (end = good.find('\n', at)) != std::string::npos; at = end + 1)

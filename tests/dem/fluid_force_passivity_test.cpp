@@ -19,14 +19,14 @@ namespace {
 using test::two_discs;
 
 constexpr double kSpringDt = 1e-4;
-constexpr double kSpringV0 = 0.05;             // [m/s] disc 0 in x, disc 1 in y at t = 0
+constexpr double kSpringV0 = 0.05;       // [m/s] disc 0 in x, disc 1 in y at t = 0
 constexpr double kStepsPerPeriod = 400;  // 50 exchanges a period at N = 8
 
 struct Oscillator {
   DemSystem system;
-  std::vector<double> rest;  // x_0
-  double stiffness = 0.0;    // k [N/m^2]
-  double max_energy_j = 0.0; // the largest kinetic + spring energy seen at an exchange
+  std::vector<double> rest;   // x_0
+  double stiffness = 0.0;     // k [N/m^2]
+  double max_energy_j = 0.0;  // the largest kinetic + spring energy seen at an exchange
 
   std::vector<double> force() const {
     const std::vector<double>& x = system.particles().position;
@@ -37,7 +37,8 @@ struct Oscillator {
   double spring_energy_j() const {
     const std::vector<double>& x = system.particles().position;
     double e = 0.0;
-    for (std::size_t k = 0; k < x.size(); ++k) e += 0.5 * stiffness * (x[k] - rest[k]) * (x[k] - rest[k]);
+    for (std::size_t k = 0; k < x.size(); ++k)
+      e += 0.5 * stiffness * (x[k] - rest[k]) * (x[k] - rest[k]);
     return e;
   }
   double energy_j() const { return system.kinetic_energy() + spring_energy_j(); }
@@ -79,7 +80,8 @@ TEST(FluidForcePassivity, TheHeldSpringGrowsWithoutIt) {
   const double e0 = o.energy_j();
   run_exchanges(o, kLagN, kLagExchanges);
   const double omega = 2 * M_PI / (kStepsPerPeriod * kSpringDt);
-  const double exponent = omega * omega * (kLagN - 1) * kSpringDt * (kLagExchanges * kLagN * kSpringDt) / 2;
+  const double exponent =
+      omega * omega * (kLagN - 1) * kSpringDt * (kLagExchanges * kLagN * kSpringDt) / 2;
   EXPECT_GT(std::log(o.energy_j() / e0), 0.5 * exponent);
 }
 

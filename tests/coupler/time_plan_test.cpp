@@ -1,5 +1,6 @@
 // The time plan refuses a run that would make no step: an end time shorter than one time step
-// (with time.ignore_limits a dt far above the end time "completed" with 0 steps, exit 0).
+// (with time.ignore_limits a dt far above the end time "completed" with 0 steps, exit 0); the
+// pore fluid's stiffness limit that binds follows the scene's coupling.
 #include <gtest/gtest.h>
 
 #include "run/time_plan.hpp"
@@ -52,6 +53,62 @@ TEST(TimePlan, TheForceIsExtrapolatedOnlyBetweenExchanges) {
               std::string::npos)
         << e.what();
   }
+}
+
+// Of the fluid's two stiffness limits the one for the scene's fluid_force binds, and the lag's
+// energy taken out moves the extrapolated one by kLagPassivityLimitFactor, not the held one. With
+// the paper-scale dynamic cut's own limits (dt 3.974e-8 s, the extrapolated limit 1.978e-7 s,
+// its start-up report) that is N = 4 without the correction and N = 8 with it.
+TEST(TimePlan, TheLagsCorrectionMovesOnlyTheExtrapolatedForcesLimit) {
+  const Limit held{"fluid_module", "pore_fluid_stiffness", 7.96e-8, "", true, "",
+                   wire::LIMIT_KIND_PORE_FLUID_STIFFNESS};
+  const Limit extrapolated{"fluid_module", "pore_fluid_stiffness_extrapolated", 1.978e-7, "",
+                           true, "", wire::LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED};
+  const Limit diffusion{"fluid_module", "explicit_diffusion", 5.6e-6, "", false, "",
+                        wire::LIMIT_KIND_UNSPECIFIED};
+  rockcut::Scene scene;
+  scene.mutable_time()->set_end_time_s(1e-4);
+  scene.mutable_time()->set_dt_s(3.974e-8);
+  scene.mutable_coupling()->set_interval_fraction(1.0);
+  const std::vector<Limit> dem = {{"dem_module", "dem_springs", 1.987e-7, "", false, "", {}}};
+  auto bound = [&](const std::vector<Limit>& limits) {
+    return applicable_fluid_limits(scene, limits);
+  };
+  auto interval = [&] {
+    return plan_time(scene, dem, bound({held, extrapolated, diffusion}), true).coupling_interval;
+  };
+
+  // Held (the schema's default): the held limit and the diffusion limit, with or without the
+  // correction, which was not measured with the held force.
+  for (const char* correction : {"none", "passivity"}) {
+    scene.mutable_coupling()->set_lag_correction(correction);
+    const std::vector<Limit> limits = bound({held, extrapolated, diffusion});
+    ASSERT_EQ(limits.size(), 2u) << correction;
+    EXPECT_EQ(limits[0].kind, wire::LIMIT_KIND_PORE_FLUID_STIFFNESS);
+    EXPECT_EQ(limits[0].dt_max_s, held.dt_max_s) << correction;
+    EXPECT_EQ(limits[1].dt_max_s, diffusion.dt_max_s);
+    EXPECT_EQ(interval(), 2u) << correction;  // 7.96e-8 / 3.974e-8
+  }
+
+  scene.mutable_coupling()->set_fluid_force("extrapolated");
+  scene.mutable_coupling()->set_lag_correction("none");
+  std::vector<Limit> limits = bound({held, extrapolated, diffusion});
+  ASSERT_EQ(limits.size(), 2u);
+  EXPECT_EQ(limits[0].kind, wire::LIMIT_KIND_PORE_FLUID_STIFFNESS_EXTRAPOLATED);
+  EXPECT_EQ(limits[0].dt_max_s, extrapolated.dt_max_s);
+  EXPECT_EQ(interval(), 4u);  // 1.978e-7 / 3.974e-8 = 4.98
+
+  scene.mutable_coupling()->set_lag_correction("passivity");
+  limits = bound({held, extrapolated, diffusion});
+  ASSERT_EQ(limits.size(), 2u);
+  EXPECT_DOUBLE_EQ(limits[0].dt_max_s, extrapolated.dt_max_s * kLagPassivityLimitFactor);
+  EXPECT_NE(limits[0].detail.find("lag_correction \"passivity\""), std::string::npos)
+      << limits[0].detail;
+  EXPECT_EQ(limits[1].dt_max_s, diffusion.dt_max_s);  // the other limits stay
+  const TimePlan plan = plan_time(scene, dem, limits, true);
+  EXPECT_EQ(plan.coupling_interval, 8u);  // 3.264e-7 / 3.974e-8 = 8.21
+  EXPECT_TRUE(plan.lag_passivity);
+  EXPECT_TRUE(plan.extrapolate_fluid_force);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "observers/energy_budget.hpp"
 #include "observers/expected_error.hpp"
 #include "observers/fracture_summary.hpp"
+#include "observers/lag_check.hpp"
 #include "observers/peclet.hpp"
 #include "observers/pressure_nodes.hpp"
 
@@ -48,6 +49,8 @@ void register_observers(const rockcut::Scene& scene, const TimePlan& plan,
     }
   }
   observers.add(std::make_unique<EnergyReport>(scene.has_fluid() ? "pore fluid" : "external force"));
+  // After the energy line: where in a cut the lag's correction did the pore fluid's dissipation.
+  if (plan.lag_passivity && scene.dem().has_tool()) observers.add(std::make_unique<LagCheck>());
 }
 
 }  // namespace rockcut::coupler

@@ -27,7 +27,6 @@ void LagCheck::row(const RunClock& clock) {
     start_travel_m_ = *travel;
     start_correction_j_ = *correction;
     start_fluid_work_j_ = *fluid;
-    start_tool_work_j_ = *tool;
   }
 }
 
@@ -56,22 +55,20 @@ bool LagCheck::finish(const RunClock&, Summary& summary, bool) {
 
 void LagCheck::save_state(state::StateArchive& a) const {
   a.put("lag_check", std::vector<double>{started_ ? 1.0 : 0.0, start_travel_m_, start_correction_j_,
-                                         start_fluid_work_j_, start_tool_work_j_,
-                                         static_cast<double>(windows_),
+                                         start_fluid_work_j_, static_cast<double>(windows_),
                                          static_cast<double>(resolved_), first_resolved_m_});
 }
 
 void LagCheck::load_state(const state::StateArchive& a) {
   if (!a.has("lag_check")) return;  // a checkpoint written without the check: start afresh
-  const auto v = a.values("lag_check", 8);
+  const auto v = a.values("lag_check", 7);
   started_ = v[0] != 0.0;
   start_travel_m_ = v[1];
   start_correction_j_ = v[2];
   start_fluid_work_j_ = v[3];
-  start_tool_work_j_ = v[4];
-  windows_ = static_cast<std::uint64_t>(v[5]);
-  resolved_ = static_cast<std::uint64_t>(v[6]);
-  first_resolved_m_ = v[7];
+  windows_ = static_cast<std::uint64_t>(v[4]);
+  resolved_ = static_cast<std::uint64_t>(v[5]);
+  first_resolved_m_ = v[6];
 }
 
 }  // namespace rockcut::coupler

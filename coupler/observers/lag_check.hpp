@@ -40,7 +40,6 @@ class LagCheck : public RunObserver {
   double start_travel_m_ = 0.0;  ///< the window's start, and the ledger there [J/m]
   double start_correction_j_ = 0.0;
   double start_fluid_work_j_ = 0.0;
-  double start_tool_work_j_ = 0.0;
   std::uint64_t windows_ = 0;
   std::uint64_t resolved_ = 0;
   double first_resolved_m_ = -1.0;

@@ -44,8 +44,8 @@ bool LagCheck::finish(const RunClock&, Summary& summary, bool) {
     std::fprintf(stderr,
                  "lag        the correction took more than the pore fluid dissipated in %llu of "
                  "%llu windows of %g mm of the tool's travel (the first from %.1f mm): there the "
-                 "lag, not Darcy flow, set the energy; a smaller coupling.interval resolves it "
-                 "(docs/record/results.md, \"The lag's energy taken out at paper scale\")\n",
+                 "lag, not Darcy flow, set the energy; a smaller coupling.interval shrinks the lag, "
+                 "1 has none (docs/record/results.md, \"The lag's energy taken out at paper scale\")\n",
                  static_cast<unsigned long long>(resolved_),
                  static_cast<unsigned long long>(windows_), kWindowM * 1e3,
                  first_resolved_m_ * 1e3);

@@ -37,8 +37,8 @@ class LagCheck : public RunObserver {
 
  private:
   bool started_ = false;
-  double start_travel_m_ = 0.0;  ///< the window's start, and the ledger there [J/m]
-  double start_correction_j_ = 0.0;
+  double start_travel_m_ = 0.0;  ///< where the window starts [m]
+  double start_correction_j_ = 0.0;  ///< the ledger's terms there [J/m]
   double start_fluid_work_j_ = 0.0;
   std::uint64_t windows_ = 0;
   std::uint64_t resolved_ = 0;

@@ -86,8 +86,8 @@ TEST(GeometryReuse, OperatorErrorIsLinearInTheMotionSinceTheGeometry) {
     EXPECT_LT(errors[k].gradient_rms, 1.0 * f);
     EXPECT_LT(errors[k].divergence_rms, 1.0 * f);
     EXPECT_LT(errors[k].gradient_max, 5.0 * f);
-    // First order: the error grows as delta, up to the largest distance the scene allows a cut
-    // (0.02). Within a tenth of the ratio of the distances: the random lengths scale exactly,
+    // First order: the error grows as delta, up to twice the default distance (0.02). Within a
+    // tenth of the ratio of the distances: the random lengths scale exactly,
     // and second-order terms are delta / h <= 2e-2 of them.
     if (k > 0) {
       const double ratio = f / fractions[k - 1];

@@ -35,6 +35,8 @@ constexpr std::pair<std::string_view, std::string_view> kDocs[] = {
      "k_s: shear stiffness of the incremental tangential spring, N/m per metre of thickness (Pa)."},
     {"rockcut.Coupling.fluid_force",
      "How the DEM applies the fluid's force on the N - 1 steps between two exchanges (N > 1; at N = 1 there are none and both give the same bits). `held`: the last force, constant (the lag of up to N dt is a negative damping k_f N dt / 2 the DEM's damping must outweigh). `extrapolated`: the last force plus its rate over the last fluid step times the time since, F^m + (t - t_m) (F^m - F^{m-1}) / (t_m - t_{m-1}), which removes the lag's first-order error and its energy; the pore fluid's stiffness then allows a larger N (docs/model.md, \"The coupling interval and the pore fluid's stiffness\")."},
+    {"rockcut.Coupling.fluid_stiffness",
+     "Whether the DEM applies each grain's own pore-fluid stiffness between exchanges (N > 1). `none`: the fluid's force alone (held or extrapolated). `self`: at each exchange the fluid also sends each grain's own block K_ii of its undrained stiffness, and the DEM adds -K_ii (x - x_exchange) at every step, so a grain's own pressure answers its motion without the lag; only its neighbours' motion is still seen at the exchange (dem_module/core/fluid_self_stiffness.hpp; docs/model.md, \"The grain's own fluid stiffness between exchanges\"). A fluid model without one refuses it."},
     {"rockcut.Coupling.interval",
      "DEM steps per fluid step (N). Leave it out to let the coupler choose it from the stability limits; a value above a limit is refused."},
     {"rockcut.Coupling.interval_fraction",

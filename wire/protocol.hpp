@@ -17,6 +17,7 @@ inline constexpr std::string_view kVelocity = "velocity";            // [m/s], 2
 inline constexpr std::string_view kVelocityHalf = "velocity_half";   // [m/s], 2, v^{n-1/2}
 inline constexpr std::string_view kDisplacement = "displacement";    // [m], 2, since last exchange
 inline constexpr std::string_view kRadius = "radius";                // [m], 1
+inline constexpr std::string_view kSelfStiffness = "fluid_self_stiffness";  // [Pa], 3: xx, xy, yy
 inline constexpr std::string_view kForce = "force";                  // [N per m thickness], 2, total
 inline constexpr std::string_view kExternalForce = "external_force"; // [N/m], 2, from the fluid
 inline constexpr std::string_view kPressure = "pressure";            // [Pa], 1

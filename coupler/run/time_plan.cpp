@@ -118,6 +118,8 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
         plan.coupling_interval > 1 && scene.coupling().fluid_force() == "extrapolated";
     plan.lag_passivity =
         plan.coupling_interval > 1 && scene.coupling().lag_correction() == "passivity";
+    plan.fluid_self_stiffness =
+        plan.coupling_interval > 1 && scene.coupling().fluid_stiffness() == "self";
     plan.report.push_back(
         "chosen coupling interval N = " + std::to_string(plan.coupling_interval) +
         ", fluid step " + fmt(plan.coupling_interval * plan.dt_s) + " s" +
@@ -130,6 +132,10 @@ TimePlan plan_time(const rockcut::Scene& scene, const std::vector<Limit>& dem_li
     if (plan.extrapolate_fluid_force) {
       plan.report.push_back("between exchanges the DEM extrapolates the fluid's force from its "
                             "last two values (coupling.fluid_force \"extrapolated\")");
+    }
+    if (plan.fluid_self_stiffness) {
+      plan.report.push_back("between exchanges the DEM applies each grain's own pore-fluid "
+                            "stiffness against its motion (coupling.fluid_stiffness \"self\")");
     }
   }
   // A step count a double holds exactly, and one a run could finish: 2^53 steps would take years.

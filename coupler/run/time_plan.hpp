@@ -42,6 +42,9 @@ struct TimePlan {
   bool extrapolate_fluid_force = false;
   /// The DEM takes out the lag's generated energy (Coupling.lag_correction "passivity", N > 1).
   bool lag_passivity = false;
+  /// The DEM applies each grain's own fluid stiffness between exchanges (Coupling.fluid_stiffness
+  /// "self", N > 1).
+  bool fluid_self_stiffness = false;
   std::vector<std::string> report; ///< one line per limit and choice, printed at start-up
 };
 

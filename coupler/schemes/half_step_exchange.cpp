@@ -22,6 +22,7 @@ void HalfStepExchange::exchange(RunClock& clock, unsigned steps, bool initial,
   advance->set_forces_before_reply(plan_.forces_before_reply);
   advance->set_extrapolate_fluid_force(plan_.extrapolate_fluid_force);
   advance->set_lag_passivity(plan_.lag_passivity);
+  advance->set_fluid_self_stiffness(plan_.fluid_self_stiffness);
   if (forces_held_) {
     advance->set_apply_forces_first(true);
     dem_.request.take_arrays(fluid_.reply);
@@ -55,6 +56,7 @@ void HalfStepExchange::exchange(RunClock& clock, unsigned steps, bool initial,
   // The fluid's scalars (and the observers' probes) only where this exchange is recorded.
   const bool record = initial || schedule->completes_step_at(kinematics_step, t);
   fs->set_report(record);
+  fs->set_self_stiffness(plan_.fluid_self_stiffness);
   if (record) observers_.each([&](RunObserver& o) { o.prepare_fluid_step(kinematics, *fs); });
   clock.bytes_exchanged += dem_.reply.payload_bytes();
   clock.bytes_in_shared_memory += dem_.reply.shared_payload_bytes();

@@ -192,6 +192,11 @@ void DemSystem::save_state(StateArchive& a) const {
     a.put("fluid_force_at_exchange_n_per_m", extrapolation_.last_force, 2);
     a.put_scalar("fluid_force_exchange_time_s", extrapolation_.last_time_s);
   }
+  if (self_stiffness_.on && !self_stiffness_.k_pa.empty()) {  // only where the scene applies it
+    a.put("fluid_self_stiffness_pa", self_stiffness_.k_pa, 3);
+    a.put("fluid_self_stiffness_position_m", self_stiffness_.last_position, 2);
+    a.put_scalar("fluid_self_stiffness_time_s", self_stiffness_.last_time_s);
+  }
   const FluidForcePassivity& lag = passivity_;
   if (lag.on && !lag.position_at_exchange.empty()) {  // only where the scene corrects the lag
     a.put("lag_position_at_exchange_m", lag.position_at_exchange, 2);
@@ -273,6 +278,15 @@ void DemSystem::assign_state(const StateArchive& a) {
     a.get("fluid_force_rate_n_per_m_s", extrapolation_.rate, 2 * n);
     a.get("fluid_force_at_exchange_n_per_m", extrapolation_.last_force, 2 * n);
     extrapolation_.last_time_s = a.scalar("fluid_force_exchange_time_s");
+  }
+  // The grain's own fluid stiffness of the last exchange; a state without one starts it at the
+  // next exchange if the run applies it.
+  self_stiffness_ = FluidSelfStiffness{};
+  if (a.has("fluid_self_stiffness_pa")) {
+    self_stiffness_.on = true;
+    a.get("fluid_self_stiffness_pa", self_stiffness_.k_pa, 3 * n);
+    a.get("fluid_self_stiffness_position_m", self_stiffness_.last_position, 2 * n);
+    self_stiffness_.last_time_s = a.scalar("fluid_self_stiffness_time_s");
   }
   // The lag's observer; a state without one starts it afresh at the next exchange.
   passivity_ = FluidForcePassivity{};

@@ -160,6 +160,8 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
   const double* fd = damping_force_.empty() ? nullptr : damping_force_.data();
   // The extrapolated external force moves on to t^{n+1} after its F^n half of the work.
   const double* fr = extrapolation_.rate.empty() ? nullptr : extrapolation_.rate.data();
+  // The grain's own fluid stiffness (core/fluid_self_stiffness.hpp): -K_ii v dt, likewise.
+  const double* fk = self_stiffness_.k_pa.empty() ? nullptr : self_stiffness_.k_pa.data();
   // The lag's dashpot (core/fluid_force_passivity.hpp): its F^n half, and the grain's work and S.
   const bool passive = passivity_.active();
   double* pw = passivity_.work_j.data();
@@ -194,6 +196,10 @@ void DemSystem::drift_range(std::size_t begin, std::size_t end, double dt, bool 
     if (fr) {
       fe[2 * i] += fr[2 * i] * dt;
       fe[2 * i + 1] += fr[2 * i + 1] * dt;
+    }
+    if (fk) {
+      fe[2 * i] -= (fk[3 * i] * vx + fk[3 * i + 1] * vy) * dt;
+      fe[2 * i + 1] -= (fk[3 * i + 1] * vx + fk[3 * i + 2] * vy) * dt;
     }
     if (fd) damping -= (fd[3 * i] * vx + fd[3 * i + 1] * vy + fd[3 * i + 2] * w[i]) * 0.5 * dt;
     if (reset_forces) {  // F^n has been used: start F^{n+1} from gravity in the same pass
@@ -555,10 +561,14 @@ void DemSystem::begin_step(double dt) {
   in_split_step_ = true;
 }
 
-void DemSystem::finish_step(double dt, std::span<const double> external) {
+void DemSystem::finish_step(double dt, std::span<const double> external,
+                            std::span<const double> self_stiffness_pa) {
   if (!in_split_step_) throw std::logic_error("finish_step without begin_step");
+  check_self_stiffness(self_stiffness_pa);
   hold_external_force(external);  // checks the size first: a refused force changes nothing
   extrapolation_.take(external, time_s_);
+  self_stiffness_.take(self_stiffness_pa, particles_.position, time_s_, extrapolation_.rate);
+  has_body_forces_ = has_body_forces_ || self_stiffness_.stiffens();  // its work is booked
   if (!internal_forces_current_) compute_internal_forces();
   finish_forces(settings_.prescribed_motion ? 0.0 : dt);
   passivity_.exchange(particles_.position, particles_.external_force, particles_.inv_mass, dt,

@@ -14,6 +14,7 @@
 #include "core/energy.hpp"
 #include "core/fluid_force_extrapolation.hpp"
 #include "core/fluid_force_passivity.hpp"
+#include "core/fluid_self_stiffness.hpp"
 #include "core/force_buffers.hpp"
 #include "core/particles.hpp"
 #include "wire/phase_clock.hpp"
@@ -80,9 +81,13 @@ class DemSystem {
   void compute_internal_forces();
   /// Second half: total force = internal + `external` (eq. 7), v^{n+1} = v^{n+1/2} + a dt/2 (eq. 8).
   /// `external` (2 per particle, [N/m]) is held for later steps until replaced.
-  void finish_step(double dt, std::span<const double> external);
+  /// `self_stiffness_pa`: the fluid's K_ii at this exchange, 3 per particle, where the run
+  /// applies it (stiffen_external_force); otherwise empty.
+  void finish_step(double dt, std::span<const double> external,
+                   std::span<const double> self_stiffness_pa = {});
   /// Replaces the held external force and re-evaluates a^n without moving (used at t = 0).
-  void set_external_force(std::span<const double> external);
+  void set_external_force(std::span<const double> external,
+                          std::span<const double> self_stiffness_pa = {});
   /// From the next external force on, extrapolate it between exchanges instead of holding it
   /// (core/fluid_force_extrapolation.hpp); off: hold it (and drop the rate).
   void extrapolate_external_force(bool on);
@@ -91,6 +96,10 @@ class DemSystem {
   /// (core/fluid_force_passivity.hpp); off: drop the observer.
   void correct_lag_passively(bool on);
   const FluidForcePassivity& lag_passivity() const { return passivity_; }
+  /// From the next exchange on, add to the external force each grain's own fluid stiffness
+  /// against its motion since the exchange (core/fluid_self_stiffness.hpp); off: drop it.
+  void stiffen_external_force(bool on);
+  const FluidSelfStiffness& fluid_self_stiffness() const { return self_stiffness_; }
   /// Holds the y velocity of `particles` at velocity_y_m_s from now on (dry scenes: an external y
   /// force on them is cancelled too). Returns the group's index for clamped_group().
   /// `fixed`: held at rest in x and spin too (velocity_y_m_s 0), the rock mass under a cut block.
@@ -167,6 +176,8 @@ class DemSystem {
   void finish_forces(double kick_dt);
   /// Copies the fluid force into the held external force, and adds the membrane's load on top.
   void hold_external_force(std::span<const double> external);
+  /// Refuses a K_ii array of the wrong size while the self stiffness is on (before any change).
+  void check_self_stiffness(std::span<const double> k) const;
   /// Holds `external` and re-evaluates a^n without moving.
   void hold_and_reevaluate(std::span<const double> external);
   void rebuild_neighbours();
@@ -199,6 +210,7 @@ class DemSystem {
   std::vector<double> damping_force_;  ///< F_d of the last evaluation, 3 per particle (x, y, moment)
   FluidForceExtrapolation extrapolation_;  ///< the external force's rate between exchanges
   FluidForcePassivity passivity_;          ///< the lag's energy observer and dashpot
+  FluidSelfStiffness self_stiffness_;      ///< the grain's own fluid stiffness between exchanges
   std::vector<ClampedGroup> clamped_;
   std::vector<WallServo> servos_;
   MembraneLoad membrane_;

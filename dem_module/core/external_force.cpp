@@ -1,6 +1,7 @@
 // The external (fluid) force of DemSystem: held between exchanges, or extrapolated
 // (core/fluid_force_extrapolation.hpp), with the lag's energy observer
-// (core/fluid_force_passivity.hpp), and a membrane's dead load on top.
+// (core/fluid_force_passivity.hpp), the grain's own fluid stiffness
+// (core/fluid_self_stiffness.hpp), and a membrane's dead load on top.
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -38,9 +39,13 @@ void DemSystem::extrapolate_external_force(bool on) {
   extrapolation_.on = on;
 }
 
-void DemSystem::set_external_force(std::span<const double> external) {
+void DemSystem::set_external_force(std::span<const double> external,
+                                   std::span<const double> self_stiffness_pa) {
+  check_self_stiffness(self_stiffness_pa);
   hold_and_reevaluate(external);  // checks the size first: a refused force changes nothing
   extrapolation_.take(external, time_s_);
+  self_stiffness_.take(self_stiffness_pa, particles_.position, time_s_, extrapolation_.rate);
+  has_body_forces_ = has_body_forces_ || self_stiffness_.stiffens();  // its work is booked
   passivity_.exchange(particles_.position, particles_.external_force, particles_.inv_mass, dt_last_,
                       steps_);
 }
@@ -49,6 +54,21 @@ void DemSystem::correct_lag_passively(bool on) {
   if (on == passivity_.on) return;
   passivity_ = FluidForcePassivity{};
   passivity_.on = on;
+}
+
+void DemSystem::stiffen_external_force(bool on) {
+  if (on == self_stiffness_.on) return;
+  self_stiffness_ = FluidSelfStiffness{};
+  self_stiffness_.on = on;
+}
+
+void DemSystem::check_self_stiffness(std::span<const double> k) const {
+  if (!self_stiffness_.on) return;
+  if (k.size() != 3 * particles_.size()) {
+    throw std::invalid_argument("fluid self stiffness has " + std::to_string(k.size()) +
+                                " values for " + std::to_string(particles_.size()) +
+                                " particles (3 each: xx, xy, yy)");
+  }
 }
 
 void DemSystem::hold_and_reevaluate(std::span<const double> external) {

@@ -183,6 +183,7 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
   }
   s.extrapolate_external_force(advance.extrapolate_fluid_force());
   s.correct_lag_passively(advance.lag_passivity());
+  s.stiffen_external_force(advance.fluid_self_stiffness());
   if (advance.apply_forces_first()) {
     // The held ApplyForces of the last exchange (no output was due at its step). The guards run
     // on the completed step at the same cadence as inside a long Advance.
@@ -236,10 +237,14 @@ void DemService::advance(const wire::Message& request, wire::Message& reply) {
 void DemService::hold_forces(const wire::Message& request) {
   DemSystem& s = system();
   const auto force = request.array(wire::field::kForce, 2, s.particles().size());
+  std::span<const double> stiffness;  // K_ii, where the run applies it between exchanges
+  if (s.fluid_self_stiffness().on) {
+    stiffness = request.array(wire::field::kSelfStiffness, 3, s.particles().size());
+  }
   if (s.in_split_step()) {
-    s.finish_step(split_dt_s_, force);
+    s.finish_step(split_dt_s_, force, stiffness);
   } else {
-    s.set_external_force(force);  // t = 0 exchange: a^0 includes the fluid force
+    s.set_external_force(force, stiffness);  // t = 0 exchange: a^0 includes the fluid force
   }
 }
 

@@ -65,6 +65,10 @@ class FluidModel {
   /// (2 per particle, [N per m thickness]) into `force`.
   virtual void step(double dt_s, double time_s, const Kinematics& kinematics,
                     std::span<double> force) = 0;
+  /// Each particle's own undrained stiffness against its displacement, K_ii of F = -K u, as 3
+  /// values per particle (xx, xy, yy) [Pa], for the current geometry (Coupling.fluid_stiffness
+  /// "self"). False for a model that has none to give. Once per step, never per particle.
+  virtual bool self_stiffness(std::vector<double>& /*out*/) { return false; }
   /// Writes an output field named in provides() (1 value per particle for scalars).
   virtual void output(const std::string& field, std::vector<double>& values) const = 0;
   /// The mean of p - p_hydro [Pa] over the particles whose centre (in `position`, the last

@@ -199,6 +199,7 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
   }
   phases_.lap(kGeometry);
   if (stale != Staleness::fresh) {
+    self_stiffness_stale_ = true;
     // On the geometry's positions X' (the current ones after a full update).
     counts_ = classify_boundary(geo_.div_r, geo_.normal, params_.surface_div_r, params_.h_m,
                                 geo_.position, radius_, sides_, boundary_, k.wall_segments);
@@ -269,6 +270,24 @@ void PorePressureModel::step(double dt_s, double /*time_s*/, const Kinematics& k
   drag_power_w_per_m_ = 0.0;
   if (params_.open_water_drag && dt_s > 0.0) add_drag(dt_s, k, force);
   phases_.lap(kForce);
+}
+
+bool PorePressureModel::self_stiffness(std::vector<double>& out) {
+  const std::size_t n = radius_.size();
+  if (self_stiffness_stale_ || self_stiffness_.size() != 3 * n ||
+      step_op_.version() != geo_.version) {
+    // w_k = alpha M A_k where the pressure answers the strain, 0 where it is held (drained).
+    const double am = params_.alpha * params_.bulk_modulus_pa;
+    stiffness_weight_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      stiffness_weight_[i] = boundary_[i] == Boundary::drained ? 0.0 : am * share_[i];
+    }
+    self_stiffness_.resize(3 * n);
+    step_op_.self_stiffness(geo_, stiffness_weight_, self_stiffness_);
+    self_stiffness_stale_ = false;
+  }
+  out.assign(self_stiffness_.begin(), self_stiffness_.end());
+  return true;
 }
 
 void PorePressureModel::add_drag(double dt_s, const Kinematics& k, std::span<double> force) {

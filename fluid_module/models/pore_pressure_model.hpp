@@ -95,6 +95,9 @@ class PorePressureModel : public FluidModel {
   void output(const std::string& field, std::vector<double>& values) const override;
   void scalars(std::vector<std::pair<std::string, double>>& out) const override;
   const wire::PhaseClock* phases() const override { return &phases_; }
+  /// K_ii of the current geometry and boundary (sp/self_stiffness.cpp), recomputed only after
+  /// either changed.
+  bool self_stiffness(std::vector<double>& out) override;
   /// The model's diffusion limit, then the pore fluid's stiffness limit (when the DEM is dynamic).
   std::vector<StabilityLimit> limits() const final;
   /// Appends the pore fluid's stiffness limits (held, then extrapolated) for the lightest grain of
@@ -191,6 +194,9 @@ class PorePressureModel : public FluidModel {
   std::uint64_t local_updates_ = 0;
   std::uint64_t rows_recomputed_ = 0;  // over all geometry updates (a full one: every row)
   std::vector<int> moved_;  // the particles a local refresh moves
+  // self_stiffness(): the last K_ii, and whether the geometry or boundary changed since.
+  std::vector<double> self_stiffness_, stiffness_weight_;
+  bool self_stiffness_stale_ = true;
   LocalRefresh refresh_;
 };
 

@@ -30,6 +30,7 @@ void PorePressureModel::save_state(StateArchive& a) const {
 }
 
 void PorePressureModel::load_state(const StateArchive& a) {
+  self_stiffness_stale_ = true;
   const std::size_t n = radius_.size();
   a.get("pressure_pa", pressure_, n);
   a.get("volumetric_strain_rate_per_s", strain_rate_, n);

@@ -165,6 +165,14 @@ void FluidService::step(const wire::Message& request, wire::Message& reply) {
   wire::FluidResult* result = reply.envelope.mutable_fluid_result();
   guard_not_finite(s.time_s(), k.position, *result);
   reply.add_array(wire::field::kForce, force_, 2);
+  if (s.self_stiffness()) {  // the grain's own stiffness, for the DEM between exchanges
+    if (!m.self_stiffness(self_stiffness_)) {
+      throw std::invalid_argument("fluid model " + m.name() +
+                                  " has no self stiffness to give (coupling.fluid_stiffness "
+                                  "\"self\" needs one; use \"none\")");
+    }
+    reply.add_array(wire::field::kSelfStiffness, self_stiffness_, 3);
+  }
   if (!s.report()) return;  // nothing records this exchange
   if (const wire::PhaseClock* phases = m.phases()) phases->write(reply.envelope);
   m.scalars(scalars_);

@@ -43,6 +43,7 @@ class FluidService final : public wire::ModuleHandler {
   std::vector<double> displacement_;
   std::size_t particle_count_ = 0;
   std::vector<double> force_;
+  std::vector<double> self_stiffness_;  ///< K_ii [Pa], 3 per particle, where the coupling asks
   std::vector<double> output_;
   std::vector<std::pair<std::string, double>> scalars_;
 };

@@ -58,6 +58,12 @@ class StepOperator {
   /// [N/m: Pa times m^2 per m of thickness]. `force` gets 2 values per particle (overwritten).
   void adjoint_force(const Geometry& geo, std::span<const double> area_q,
                      std::span<double> force) const;
+  /// Each particle's own block of the undrained stiffness the adjoint force answers a
+  /// displacement with, K_ii = sum_k w_k (dDiv_k / du_i)(dDiv_k / du_i)^T with w_k = alpha M A_k
+  /// (0 where the pressure is held): 3 values per particle (xx, xy, yy) [Pa]
+  /// (sp/self_stiffness.cpp).
+  void self_stiffness(const Geometry& geo, std::span<const double> weight,
+                      std::span<double> out) const;
 
  private:
   template <class Rows>

@@ -202,6 +202,10 @@ INSTANTIATE_TEST_SUITE_P(
                       // exchanges and the observer's residuals are state (the case above runs
                       // it too, on one thread and inproc).
                       Case{"saturated_reduced_long_viscous", "2", "ipc"},
+                      // ... and with each grain's own fluid stiffness between exchanges: K_ii,
+                      // x^m and t_m of the last exchange are state.
+                      Case{"saturated_reduced_long_viscous", "2", "ipc",
+                           {"--set", "coupling.fluid_stiffness=self"}, "_self_stiffness"},
                       // The pore fluid on points of about four grains (its clusters are
                       // rebuilt from the scene, its state is the points').
                       Case{"saturated_reduced_long_viscous", "2", "ipc",

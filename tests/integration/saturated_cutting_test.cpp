@@ -192,22 +192,28 @@ TEST(SaturatedCutting, ForcesRidingOnTheNextAdvanceChangeNoBit) {
   // arithmetic in the same order, so the state must be bit for bit that of a run which records
   // every step (and so completes every exchange with its own ApplyForces). The same with the
   // fluid's force extrapolated between exchanges (coupling.fluid_force): the line's rate is taken
-  // when the force arrives, with the Advance or on its own.
-  for (const std::string fluid_force : {"held", "extrapolated"}) {
-    SCOPED_TRACE(fluid_force);
-    const std::vector<std::string> short_cut = {
+  // when the force arrives, with the Advance or on its own; and with each grain's own fluid
+  // stiffness (coupling.fluid_stiffness "self"), whose array rides with the force.
+  for (const std::string variant : {"held", "extrapolated", "self"}) {
+    SCOPED_TRACE(variant);
+    const std::string fluid_force = variant == "held" ? "held" : "extrapolated";
+    std::vector<std::string> short_cut = {
         "--set", "time.end_time_s=0.002", "--set", "output.frame_interval_s=0",
         "--set", "coupling.interval=3",   "--set", "coupling.fluid_force=" + fluid_force};
+    if (variant == "self") short_cut.insert(short_cut.end(), {"--set", "coupling.fluid_stiffness=self"});
     std::vector<std::string> sparse = short_cut, dense = short_cut;
     sparse.insert(sparse.end(), {"--set", "output.timeseries_every_steps=100000"});
     dense.insert(dense.end(), {"--set", "output.timeseries_every_steps=1"});
-    const CouplerRun a = run_small_cut("merged_sparse_" + fluid_force, sparse);
-    const CouplerRun b = run_small_cut("merged_dense_" + fluid_force, dense);
+    const CouplerRun a = run_small_cut("merged_sparse_" + variant, sparse);
+    const CouplerRun b = run_small_cut("merged_dense_" + variant, dense);
     ASSERT_EQ(a.code, 0) << a.err;
     ASSERT_EQ(b.code, 0) << b.err;
     if (fluid_force == "extrapolated") {
       EXPECT_NE(a.err.find("the DEM extrapolates the fluid's force"), std::string::npos) << a.err;
     }
+    EXPECT_EQ(a.err.find("each grain's own pore-fluid stiffness") != std::string::npos,
+              variant == "self")
+        << a.err;
     const H5Reader ha(a.out / "run.h5"), hb(b.out / "run.h5");
     const auto ta = ha.doubles("/timeseries/time_s");
     const auto tb = hb.doubles("/timeseries/time_s");

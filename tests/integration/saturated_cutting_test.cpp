@@ -74,12 +74,13 @@ void expect_coupled_cutting_summary(const Summary& s, const std::string& model) 
   EXPECT_GT(number(s, "dem_busy_s"), 0.0);
   EXPECT_LE(number(s, "dem_busy_s"), number(s, "wall_time_s") * 1.05);
   // The DEM computes its contact forces after replying with the kinematics (DESIGN section 3),
-  // a part of its busy time; the fluid does nothing after its replies, so its share is the two
-  // clock reads around an empty call (0.2 ms over this whole run, measured; 1 % of the busy time
-  // leaves room for a slow host).
+  // a part of its busy time. The fluid does nothing after its replies: its share is the two clock
+  // reads around an empty call, 0.2 ms over this run on a quiet host, but on a loaded one the
+  // scheduler may park the process between them just as the DEM wakes on the reply (9 ms against
+  // 7 ms of busy time, seen under ctest -j2), so only its sign is a property of the code.
   EXPECT_GT(number(s, "dem_after_reply_s"), 0.0);
   EXPECT_LT(number(s, "dem_after_reply_s"), number(s, "dem_busy_s"));
-  EXPECT_LT(number(s, "fluid_after_reply_s"), 0.01 * number(s, "fluid_busy_s"));
+  EXPECT_GE(number(s, "fluid_after_reply_s"), 0.0);
   // The energy budget (DESIGN section 5): tool and wall work + fluid work = kinetic + strain +
   // damping + friction + broken bonds. Its terms are time integrals by the trapezoid rule over a
   // step, the damping's with the O(dt) error of a force that flips sign with v; measured 0.3-0.9 %

@@ -122,8 +122,13 @@ class RealCut(unittest.TestCase):
             self.assertAlmostEqual(r["ms_per_step"], 1e3 * r["wall_s"] / r["steps"])
             self.assertGreater(r["phases"]["dem"]["bonds"], 0.0)
             self.assertGreater(r["phases"]["fluid"]["passes"], 0.0)
-            # Busy time within the stretch's wall, every part non-negative.
-            self.assertLessEqual(r["dem_busy_s"] + r["fluid_busy_s"], r["wall_s"] * 1.001)
+            # Each module's busy time within the stretch's wall, every part non-negative; taking
+            # turns the two never run at once, so their sum is within it too (overlapping, the
+            # DEM's forces after its reply run beside the fluid's step and are counted twice).
+            for who in ("dem", "fluid"):
+                self.assertLessEqual(r[who + "_busy_s"], r["wall_s"] * 1.001)
+            if r["variant"].startswith("t"):
+                self.assertLessEqual(r["dem_busy_s"] + r["fluid_busy_s"], r["wall_s"] * 1.001)
             self.assertGreaterEqual(r["own_s"], 0.0)
         model = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "bench", "scaling_model.py"),
                                 out, "--cores", "2,64", "--check", "t2:2,t4:4"],
